@@ -1,0 +1,127 @@
+// rkpost: merge the ranks' result frames into one .vtu per frame and a .pvd time series.
+//   rkpost CASE
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+
+#include "cli.hpp"
+#include "h5file.hpp"
+#include "vtu_writer.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Frame {
+  double time = 0;
+  std::vector<std::int64_t> gid, rank;
+  std::vector<double> x, u, v, ep, vm, p;
+};
+
+void append(std::vector<double>& to, const std::vector<double>& from) { to.insert(to.end(), from.begin(), from.end()); }
+
+Frame read_frame(const std::vector<std::unique_ptr<rk::H5File>>& files, int f) {
+  Frame fr;
+  char group[32];
+  std::snprintf(group, sizeof group, "frames/%05d/", f);
+  const std::string g(group);
+  for (std::size_t r = 0; r < files.size(); ++r) {
+    const auto& h = *files[r];
+    fr.time = h.read<double>(g + "time")[0];
+    auto gid = h.read<std::int64_t>(g + "global_id");
+    fr.rank.insert(fr.rank.end(), gid.size(), std::int64_t(r));
+    fr.gid.insert(fr.gid.end(), gid.begin(), gid.end());
+    append(fr.x, h.read<double>(g + "x", 3));
+    append(fr.u, h.read<double>(g + "displacement", 3));
+    append(fr.v, h.read<double>(g + "velocity", 3));
+    append(fr.ep, h.read<double>(g + "eq_plastic_strain"));
+    append(fr.vm, h.read<double>(g + "von_mises"));
+    append(fr.p, h.read<double>(g + "pressure"));
+  }
+  return fr;
+}
+
+// Reorders by global id and checks that every particle appears exactly once.
+void sort_by_global_id(Frame& fr, const std::string& where) {
+  const std::size_t n = fr.gid.size();
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return fr.gid[a] < fr.gid[b]; });
+  for (std::size_t k = 0; k < n; ++k)
+    if (fr.gid[order[k]] != std::int64_t(k))
+      throw rk::Error(where + ": particles are missing or duplicated across ranks (global id " +
+                      std::to_string(fr.gid[order[k]]) + " at position " + std::to_string(k) + ")");
+  auto permute = [&](auto& a, int w) {
+    auto b = a;
+    for (std::size_t k = 0; k < n; ++k)
+      for (int c = 0; c < w; ++c) a[w * k + c] = b[w * order[k] + c];
+  };
+  permute(fr.gid, 1), permute(fr.rank, 1), permute(fr.x, 3), permute(fr.u, 3), permute(fr.v, 3);
+  permute(fr.ep, 1), permute(fr.vm, 1), permute(fr.p, 1);
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"rkpost: merge the ranks' results into VTK files for ParaView (CASE/vtk/case.pvd)", "rkpost"};
+  rk::add_version_flag(app);
+  std::string case_dir;
+  bool quiet = false;
+  app.add_option("case", case_dir, "case directory (after rksolve)")->required();
+  app.add_flag("--quiet", quiet, "print nothing but errors");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  std::ifstream prep_file(case_dir + "/prep.json");
+  if (!prep_file) throw rk::Error(case_dir + "/prep.json: not found (is this a case directory written by rkprep?)");
+  const int ranks = nlohmann::json::parse(prep_file)["ranks"].get<int>();
+  std::vector<std::unique_ptr<rk::H5File>> files;
+  std::int64_t frames = -1;
+  for (int r = 0; r < ranks; ++r) {
+    char name[40];
+    std::snprintf(name, sizeof name, "/results/rank_%04d.h5", r);
+    files.push_back(std::make_unique<rk::H5File>(case_dir + name, rk::H5File::Mode::read));
+    const auto n = files.back()->attr_int("frames");
+    frames = frames < 0 ? n : std::min(frames, n);
+  }
+  fs::create_directories(case_dir + "/vtk");
+  std::vector<std::pair<double, std::string>> index;
+  for (int f = 0; f < frames; ++f) {
+    Frame fr = read_frame(files, f);
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%05d.vtu", f);
+    sort_by_global_id(fr, case_dir + " frame " + std::to_string(f));
+    std::vector<rk::VtuArray> data;
+    data.push_back({"global_id", 1, {}, fr.gid});
+    data.push_back({"displacement", 3, fr.u, {}});
+    data.push_back({"velocity", 3, fr.v, {}});
+    data.push_back({"eq_plastic_strain", 1, fr.ep, {}});
+    data.push_back({"von_mises", 1, fr.vm, {}});
+    data.push_back({"pressure", 1, fr.p, {}});
+    data.push_back({"rank", 1, {}, fr.rank});
+    rk::write_vtu(case_dir + "/vtk/" + name, fr.x, data);
+    index.emplace_back(fr.time, name);
+  }
+  rk::write_pvd(case_dir + "/vtk/case.pvd", index);
+  if (!quiet)
+    std::printf("rkpost: %lld frames of %d ranks merged into %s/vtk/case.pvd\n", static_cast<long long>(frames), ranks,
+                case_dir.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const rk::Error& e) {
+    std::fprintf(stderr, "rkpost: error: %s\n", e.what());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rkpost: internal error: %s\n", e.what());
+  }
+  return 1;
+}

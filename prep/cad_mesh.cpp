@@ -1,0 +1,130 @@
+#include "cad_mesh.hpp"
+
+#include <gmsh.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <unordered_map>
+
+#include "error.hpp"
+
+namespace rk {
+namespace {
+
+struct GmshSession {  // gmsh is a process-wide singleton: initialize once per mesh_cad call
+  explicit GmshSession(double h) {
+    std::string hs = std::to_string(h);
+    std::vector<std::string> args{"rkprep", "-setnumber", "h", hs};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    gmsh::initialize(int(argv.size()), argv.data(), false);
+    gmsh::option::setNumber("General.Terminal", 0);
+    gmsh::option::setNumber("General.Verbosity", 2);
+    gmsh::logger::start();
+  }
+  // gmsh's own error lines, for messages when it failed without throwing.
+  static std::string errors() {
+    std::vector<std::string> log;
+    gmsh::logger::get(log);
+    std::string out;
+    for (auto& l : log)
+      if (l.rfind("Error", 0) == 0) out += (out.empty() ? "" : "; ") + l;
+    return out;
+  }
+  ~GmshSession() { gmsh::finalize(); }
+};
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+VolumeMesh mesh_with_gmsh(const MeshRequest& r) {
+  const std::string ext = lower_extension(r.cad);
+  const double h = r.spacing / r.unit;  // in CAD units
+  GmshSession session(h);
+  if (ext == ".geo") {
+    gmsh::open(r.cad);
+  } else if (ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs" || ext == ".brep") {
+    gmsh::option::setNumber("Geometry.OCCTargetUnit", 0);  // keep the file's own numbers; unit from the scene
+    gmsh::merge(r.cad);
+    gmsh::option::setNumber("Mesh.MeshSizeMax", 2 * h);   // subdivision halves the edges
+    gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * h);
+    gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 2);  // all hexahedra
+  } else {
+    throw Error(r.cad + ": unsupported CAD format '" + ext + "' (use .geo, .step, .iges or .brep)");
+  }
+  gmsh::vectorpair volumes;
+  gmsh::model::getEntities(volumes, 3);
+  if (volumes.empty()) {
+    std::string why = GmshSession::errors();
+    throw Error(r.cad + ": the CAD holds no closed solid (no volume to mesh)" + (why.empty() ? "" : ": " + why));
+  }
+  gmsh::model::mesh::generate(3);
+
+  std::vector<int> types;
+  std::vector<std::vector<std::size_t>> tags, nodes;
+  gmsh::model::mesh::getElements(types, tags, nodes, 3, -1);
+  VolumeMesh mesh;
+  std::unordered_map<std::size_t, std::int32_t> index;  // gmsh node tag -> node index
+  std::vector<std::size_t> order;                       // node index -> gmsh tag
+  for (std::size_t t = 0; t < types.size(); ++t) {
+    int per;
+    if (types[t] == 5) per = 8;
+    else if (types[t] == 4) per = 4;
+    else
+      throw Error(r.cad + ": the mesh has elements of gmsh type " + std::to_string(types[t]) +
+                  "; only hexahedra and tetrahedra are integration cells");
+    for (std::size_t e = 0; e < tags[t].size(); ++e) {
+      for (int a = 0; a < per; ++a) {
+        auto tag = nodes[t][e * per + a];
+        auto [it, fresh] = index.emplace(tag, std::int32_t(order.size()));
+        if (fresh) order.push_back(tag);
+        mesh.cell_nodes.push_back(it->second);
+      }
+      mesh.cell_offsets.push_back(std::int32_t(mesh.cell_nodes.size()));
+    }
+  }
+  if (mesh.cell_count() == 0) throw Error(r.cad + ": meshing produced no 3-D cells (open surface or zero volume?)");
+
+  mesh.X.resize(3 * order.size());
+  mesh.surface.assign(order.size(), 0);
+  {
+    std::vector<std::size_t> all;
+    std::vector<double> coord, param;
+    gmsh::model::mesh::getNodes(all, coord, param, -1, -1, true, false);
+    for (std::size_t k = 0; k < all.size(); ++k) {
+      auto it = index.find(all[k]);
+      if (it == index.end()) continue;
+      for (int d = 0; d < 3; ++d) mesh.X[3 * it->second + d] = coord[3 * k + d] * r.unit;
+    }
+  }
+  // Surface nodes: nodes of the 2-D elements on the volumes' boundaries.
+  gmsh::vectorpair boundary;
+  gmsh::model::getBoundary(volumes, boundary, true, false, false);
+  for (auto [dim, tag] : boundary) {
+    std::vector<std::size_t> ntags;
+    std::vector<double> coord, param;
+    gmsh::model::mesh::getNodes(ntags, coord, param, dim, std::abs(tag), true, false);
+    for (auto n : ntags) {
+      auto it = index.find(n);
+      if (it != index.end()) mesh.surface[it->second] = 1;
+    }
+  }
+  return mesh;
+}
+
+}  // namespace
+
+VolumeMesh mesh_cad(const MeshRequest& r) {
+  if (!std::filesystem::exists(r.cad)) throw Error(r.cad + ": CAD file not found");
+  try {
+    return mesh_with_gmsh(r);
+  } catch (const std::string& e) {  // gmsh 4.8 throws std::string
+    throw Error(r.cad + ": gmsh failed: " + e);
+  }
+}
+
+}  // namespace rk

@@ -1,0 +1,31 @@
+// CAD -> volume mesh with gmsh (OpenCASCADE for STEP/IGES/BREP, .geo scripts as written).
+// Particles are the mesh nodes (so they lie on the CAD surfaces); integration cells are its elements.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rk {
+
+enum class CellType : std::int8_t { tet4 = 4, hex8 = 8 };
+
+struct VolumeMesh {
+  std::vector<double> X;               // 3 per node, metres
+  std::vector<std::uint8_t> surface;   // 1 if the node lies on the solid's boundary
+  std::vector<std::int32_t> cell_offsets{0};
+  std::vector<std::int32_t> cell_nodes;  // gmsh node order within each cell
+  std::size_t node_count() const { return surface.size(); }
+  std::size_t cell_count() const { return cell_offsets.size() - 1; }
+};
+
+struct MeshRequest {
+  std::string cad;       // path
+  double unit = 1.0;     // metres per CAD unit
+  double spacing = 0;    // target particle spacing, metres
+};
+
+// Meshes the solid. .geo scripts see the spacing (in CAD units) as the number `h`
+// (as with `gmsh -setnumber h ...`); other CAD is meshed with all-hex subdivision at that spacing.
+VolumeMesh mesh_cad(const MeshRequest& request);
+
+}  // namespace rk

@@ -1,0 +1,25 @@
+// From the volume mesh to the RKPM discretization: integration points (Gauss rules in each cell),
+// particle volumes consistent with the cells (lumped: V_I = sum_g w_g N^cell_I(xi_g), so sum V_I =
+// sum of cell volumes) and the local particle spacing h_I (mean length of the cell edges at I).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "cad_mesh.hpp"
+
+namespace rk {
+
+struct Discretization {
+  std::vector<double> point_X;       // 3 per point
+  std::vector<double> point_weight;  // m^3
+  std::vector<std::int32_t> point_cell;
+  std::vector<double> volume;   // per particle
+  std::vector<double> spacing;  // per particle
+};
+
+Discretization discretize(const VolumeMesh& mesh, int gauss_order);
+
+// Edges of a cell as pairs of its local node numbers (gmsh ordering).
+const std::vector<std::pair<int, int>>& cell_edges(int nodes_per_cell);
+
+}  // namespace rk

@@ -1,0 +1,26 @@
+// What every program does the same way: --version, --set parsing, and turning an error into one
+// clear message with a non-zero exit.
+#pragma once
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "error.hpp"
+#include "rkforge/version.hpp"
+#include "scene.hpp"
+
+namespace rk {
+
+inline void add_version_flag(CLI::App& app) {
+  app.set_version_flag("--version", std::string(app.get_name()) + " (rkforge) " + kVersion);
+}
+
+inline std::vector<Override> parse_overrides(const std::vector<std::string>& sets) {
+  std::vector<Override> out;
+  for (const auto& s : sets) out.push_back(parse_override(s));
+  return out;
+}
+
+}  // namespace rk

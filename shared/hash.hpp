@@ -1,0 +1,24 @@
+// FNV-1a 64-bit: a stable content hash (std::hash is not guaranteed stable across builds).
+#pragma once
+#include <cstdint>
+#include <cstdio>
+#include <string_view>
+#include <string>
+
+namespace rk {
+
+inline std::uint64_t fnv1a(std::string_view bytes, std::uint64_t h = 1469598103934665603ull) {
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+inline std::string fnv1a_hex(std::string_view bytes) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(fnv1a(bytes)));
+  return buf;
+}
+
+}  // namespace rk

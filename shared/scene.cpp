@@ -1,0 +1,321 @@
+// Scene parsing and validation: every key, type and physical range is checked here and nowhere else.
+#include "scene.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "error.hpp"
+#include "hash.hpp"
+
+namespace rk {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Where a node came from: "scene.yaml:12" or "scene.yaml (--set a.b)".
+std::string where(const std::string& file, const YAML::Node& node, const std::string& path) {
+  if (node && node.Mark().line >= 0) return file + ":" + std::to_string(node.Mark().line + 1);
+  return file + " (key '" + path + "')";
+}
+
+struct Range {
+  double lo = -kInf, hi = kInf;
+  bool lo_open = false, hi_open = false;
+  std::string text() const {
+    std::ostringstream s;
+    s << (lo_open ? "(" : "[") << lo << ", " << hi << (hi_open ? ")" : "]");
+    return s.str();
+  }
+  bool holds(double v) const {
+    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  }
+};
+
+// A YAML map read strictly: every key must be consumed, each value is typed and range-checked,
+// and what was read (defaults included) is recorded in `resolved`.
+class Section {
+ public:
+  Section(std::string file, YAML::Node node, std::string path, YAML::Node resolved)
+      : file_(std::move(file)), node_(node), path_(std::move(path)), resolved_(resolved) {
+    if (node_ && !node_.IsNull() && !node_.IsMap())
+      throw Error(where(file_, node_, path_) + ": '" + path_ + "' must be a map of keys");
+  }
+
+  std::string key_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+  YAML::Node get(const std::string& key, bool required) {
+    seen_.insert(key);
+    YAML::Node v = node_ ? node_[key] : YAML::Node();
+    if ((!v || v.IsNull()) && required)
+      throw Error(where(file_, node_, path_) + ": missing key '" + key_path(key) + "'");
+    return v;
+  }
+
+  double number(const std::string& key, std::optional<double> fallback, Range range) {
+    YAML::Node v = get(key, !fallback.has_value());
+    double x = fallback.value_or(0.0);
+    if (v && !v.IsNull()) x = as_number(v, key);
+    if (!std::isfinite(x) || !range.holds(x)) {
+      std::ostringstream s;
+      s << where(file_, v ? v : node_, key_path(key)) << ": key '" << key_path(key) << "' = " << x
+        << " is out of range " << range.text();
+      throw Error(s.str());
+    }
+    resolved_[key] = x;
+    return x;
+  }
+
+  int integer(const std::string& key, std::optional<int> fallback, int lo, int hi) {
+    double x = number(key, fallback ? std::optional<double>(*fallback) : std::nullopt,
+                      Range{double(lo), double(hi)});
+    if (x != std::floor(x))
+      throw Error(where(file_, node_[key], key_path(key)) + ": key '" + key_path(key) +
+                  "' must be an integer");
+    resolved_[key] = int(x);
+    return int(x);
+  }
+
+  std::string text(const std::string& key, std::optional<std::string> fallback,
+                   const std::vector<std::string>& choices = {}) {
+    YAML::Node v = get(key, !fallback.has_value());
+    std::string s = fallback.value_or("");
+    if (v && !v.IsNull()) {
+      if (!v.IsScalar())
+        throw Error(where(file_, v, key_path(key)) + ": key '" + key_path(key) + "' must be a string");
+      s = v.as<std::string>();
+    }
+    if (!choices.empty() && std::find(choices.begin(), choices.end(), s) == choices.end()) {
+      std::string list;
+      for (auto& c : choices) list += (list.empty() ? "" : ", ") + c;
+      throw Error(where(file_, v ? v : node_, key_path(key)) + ": key '" + key_path(key) + "' = '" + s +
+                  "' is not one of: " + list);
+    }
+    resolved_[key] = s;
+    return s;
+  }
+
+  Vec3 vec3(const std::string& key, std::optional<Vec3> fallback, bool unit = false) {
+    YAML::Node v = get(key, !fallback.has_value());
+    Vec3 x = fallback.value_or(Vec3{});
+    if (v && !v.IsNull()) {
+      if (!v.IsSequence() || v.size() != 3)
+        throw Error(where(file_, v, key_path(key)) + ": key '" + key_path(key) +
+                    "' must be a list of 3 numbers");
+      for (int i = 0; i < 3; ++i) x[i] = as_number(v[i], key);
+    }
+    if (unit) {
+      double n = norm(x);
+      if (!(n > 1e-12))
+        throw Error(where(file_, v ? v : node_, key_path(key)) + ": key '" + key_path(key) +
+                    "' must be a non-zero direction");
+      for (auto& c : x) c /= n;
+    }
+    YAML::Node out(YAML::NodeType::Sequence);
+    for (double c : x) out.push_back(c);
+    out.SetStyle(YAML::EmitterStyle::Flow);
+    resolved_[key] = out;
+    return x;
+  }
+
+  void record(const std::string& key, const std::string& value) { resolved_[key] = value; }
+
+  Section section(const std::string& key, bool required = false) {
+    YAML::Node v = get(key, required);
+    YAML::Node out(YAML::NodeType::Map);
+    resolved_[key] = out;
+    return Section(file_, v, key_path(key), out);
+  }
+
+  // A list of maps, each read by `read(Section&)`.
+  template <class Fn>
+  void list(const std::string& key, Fn read) {
+    YAML::Node v = get(key, false);
+    YAML::Node out(YAML::NodeType::Sequence);
+    if (v && !v.IsNull()) {
+      if (!v.IsSequence())
+        throw Error(where(file_, v, key_path(key)) + ": key '" + key_path(key) + "' must be a list");
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        YAML::Node item(YAML::NodeType::Map);
+        Section s(file_, v[i], key_path(key) + "[" + std::to_string(i) + "]", item);
+        read(s);
+        s.done();
+        out.push_back(item);
+      }
+    }
+    resolved_[key] = out;
+  }
+
+  void done() const {
+    if (!node_ || node_.IsNull()) return;
+    for (auto it = node_.begin(); it != node_.end(); ++it) {
+      std::string k = it->first.as<std::string>();
+      if (!seen_.count(k))
+        throw Error(where(file_, it->first, key_path(k)) + ": unknown key '" + key_path(k) + "'");
+    }
+  }
+
+ private:
+  double as_number(const YAML::Node& v, const std::string& key) const {
+    try {
+      if (!v.IsScalar()) throw YAML::BadConversion(v.Mark());
+      return v.as<double>();
+    } catch (const YAML::BadConversion&) {
+      throw Error(where(file_, v, key_path(key)) + ": key '" + key_path(key) + "' must be a number");
+    }
+  }
+
+  std::string file_;
+  YAML::Node node_;
+  std::string path_;
+  YAML::Node resolved_;
+  std::set<std::string> seen_;
+};
+
+double unit_length(const std::string& unit) {
+  static const std::map<std::string, double> units{{"m", 1.0}, {"mm", 1e-3}, {"cm", 1e-2}, {"in", 0.0254}};
+  return units.at(unit);
+}
+
+void apply_override(YAML::Node root, const Override& o, const std::string& file) {
+  std::vector<std::string> keys;
+  std::stringstream ss(o.path);
+  for (std::string k; std::getline(ss, k, '.');) keys.push_back(k);
+  YAML::Node node = root;
+  for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
+    YAML::Node next = node[keys[i]];
+    if (next && !next.IsNull() && !next.IsMap())
+      throw Error(file + ": --set " + o.path + ": '" + keys[i] + "' is not a section");
+    if (!next || next.IsNull()) node[keys[i]] = YAML::Node(YAML::NodeType::Map);
+    node.reset(node[keys[i]]);
+  }
+  try {
+    node[keys.back()] = YAML::Load(o.value);
+  } catch (const YAML::Exception& e) {
+    throw Error(file + ": --set " + o.path + "=" + o.value + ": not a valid value");
+  }
+}
+
+}  // namespace
+
+Override parse_override(const std::string& text) {
+  auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+    throw Error("--set '" + text + "': expected key.path=value");
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+double minimum_dilation(const std::string& basis) { return basis == "quadratic" ? 2.5 : 1.5; }
+
+Scene load_scene(const std::filesystem::path& file, const std::vector<Override>& overrides, Side side) {
+  const std::string name = file.string();
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(name);
+  } catch (const YAML::BadFile&) {
+    throw Error(name + ": cannot open the scene file");
+  } catch (const YAML::ParserException& e) {
+    throw Error(name + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax error: " + e.msg);
+  }
+  if (!root.IsMap()) throw Error(name + ": the scene must be a YAML map of sections");
+  for (const auto& o : overrides) {
+    const bool prep_key = o.path.rfind("geometry.", 0) == 0 || o.path.rfind("discretization.", 0) == 0;
+    if (side == Side::solve && prep_key)
+      throw Error("--set " + o.path + ": this key is used by rkprep; re-run rkprep with it");
+    apply_override(root, o, name);
+  }
+
+  Scene s;
+  s.file = file;
+  s.dir = std::filesystem::absolute(file).parent_path();
+  YAML::Node resolved(YAML::NodeType::Map);
+  Section top(name, root, "", resolved);
+
+  {
+    Section g = top.section("geometry", true);
+    std::string cad = g.text("cad", std::nullopt);
+    std::filesystem::path p(cad);
+    s.geometry.cad = (p.is_absolute() ? p : (s.dir / p)).lexically_normal().string();
+    g.record("cad", s.geometry.cad);  // the resolved deck holds the absolute path
+    s.geometry.unit = unit_length(g.text("unit", "m", {"m", "mm", "cm", "in"}));
+    g.done();
+  }
+  {
+    Section d = top.section("discretization", true);
+    auto& o = s.discretization;
+    o.spacing = d.number("spacing", std::nullopt, {0, 10, true, false});
+    o.kernel = d.text("kernel", o.kernel, {"cubic_bspline", "quartic_spline"});
+    o.basis = d.text("basis", o.basis, {"linear", "quadratic"});
+    o.dilation = d.number("dilation", o.dilation, {0, 10, true, false});
+    if (o.dilation < minimum_dilation(o.basis))
+      throw Error(name + ": key 'discretization.dilation' = " + std::to_string(o.dilation) +
+                  " gives a support too small for the " + o.basis + " basis (minimum " +
+                  std::to_string(minimum_dilation(o.basis)) + ")");
+    o.integration = d.text("integration", o.integration, {"gauss"});
+    o.gauss_order = d.integer("gauss_order", o.gauss_order, 1, 3);
+    o.volumetric = d.text("volumetric", o.volumetric, {"fbar", "none"});
+    d.done();
+  }
+  {
+    Section m = top.section("material", true);
+    auto& o = s.material;
+    std::string model = m.text("model", std::nullopt, {"elastic", "j2_linear"});
+    o.model = model == "elastic" ? MaterialModel::elastic : MaterialModel::j2_linear;
+    o.density = m.number("density", std::nullopt, {0, 1e6, true, false});
+    o.youngs_modulus = m.number("youngs_modulus", std::nullopt, {0, 1e13, true, false});
+    o.poisson_ratio = m.number("poisson_ratio", std::nullopt, {-1, 0.5, true, true});
+    if (o.model == MaterialModel::j2_linear) {
+      o.yield_stress = m.number("yield_stress", std::nullopt, {0, 1e12, true, false});
+      o.hardening_modulus = m.number("hardening_modulus", 0.0, {0, 1e13});
+    }
+    m.done();
+  }
+  {
+    Section ic = top.section("initial_conditions");
+    s.initial.velocity = ic.vec3("velocity", Vec3{0, 0, 0});
+    ic.done();
+  }
+  {
+    Section b = top.section("boundaries");
+    b.list("symmetry_planes", [&](Section& p) {
+      s.symmetry_planes.push_back({p.vec3("point", std::nullopt), p.vec3("normal", std::nullopt, true)});
+    });
+    b.list("rigid_walls", [&](Section& p) {
+      RigidWall w;
+      w.name = p.text("name", "wall" + std::to_string(s.rigid_walls.size()));
+      w.point = p.vec3("point", std::nullopt);
+      w.normal = p.vec3("normal", std::nullopt, true);
+      s.rigid_walls.push_back(w);
+    });
+    b.done();
+  }
+  {
+    Section t = top.section("time", true);
+    s.time.end = t.number("end", std::nullopt, {0, 1e6, true, false});
+    s.time.cfl = t.number("cfl", s.time.cfl, {0, 2, true, false});
+    s.time.output_interval = t.number("output_interval", s.time.end / 10, {0, 1e6, true, false});
+    t.done();
+  }
+  {
+    Section h = top.section("health");
+    s.health.max_energy_error = h.number("max_energy_error", s.health.max_energy_error, {0, 1e3, true, false});
+    h.done();
+  }
+  top.done();
+
+  YAML::Emitter all;
+  all << resolved;
+  s.resolved_yaml = std::string(all.c_str()) + "\n";
+  YAML::Emitter prep;
+  prep << resolved["geometry"] << resolved["discretization"];
+  s.prep_hash = fnv1a_hex(prep.c_str());
+  return s;
+}
+
+}  // namespace rk

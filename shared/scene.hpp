@@ -1,0 +1,94 @@
+// The scene: one YAML input deck, validated in one place (scene.cpp), echoed resolved by rkprep.
+// Every key is documented in docs/scene.md. Units are SI except geometry.unit (the CAD's length unit).
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "vec3.hpp"
+
+namespace rk {
+
+struct SymmetryPlane {
+  Vec3 point{};
+  Vec3 normal{};  // unit
+};
+
+struct RigidWall {
+  std::string name;
+  Vec3 point{};
+  Vec3 normal{};  // unit, pointing into the workpiece side
+};
+
+enum class MaterialModel { elastic, j2_linear };
+
+struct Material {
+  MaterialModel model = MaterialModel::j2_linear;
+  double density = 0;            // kg/m3
+  double youngs_modulus = 0;     // Pa
+  double poisson_ratio = 0;      // -
+  double yield_stress = 0;       // Pa (initial)
+  double hardening_modulus = 0;  // Pa (linear isotropic)
+};
+
+struct Scene {
+  std::filesystem::path file;  // the YAML it was read from
+  std::filesystem::path dir;   // folder of that file: CAD paths are relative to it
+
+  struct Geometry {
+    std::string cad;          // path relative to dir
+    double unit = 1.0;        // metres per CAD length unit
+  } geometry;
+
+  struct Discretization {
+    double spacing = 0;       // m, target particle spacing
+    double dilation = 2.0;    // support radius / local particle spacing
+    std::string kernel = "cubic_bspline";
+    std::string basis = "linear";
+    std::string integration = "gauss";
+    int gauss_order = 2;      // Gauss points per direction in each cell
+    std::string volumetric = "fbar";  // fbar (cell-averaged dilatation) or none
+  } discretization;
+
+  Material material;
+
+  struct Initial {
+    Vec3 velocity{};          // m/s, uniform
+  } initial;
+
+  std::vector<SymmetryPlane> symmetry_planes;
+  std::vector<RigidWall> rigid_walls;
+
+  struct Time {
+    double end = 0;                // s
+    double cfl = 0.5;              // fraction of the stable step
+    double output_interval = 0;    // s
+  } time;
+
+  struct Health {
+    double max_energy_error = 0.05;  // fraction of the energy scale; past it the run stops
+  } health;
+
+  std::string resolved_yaml;     // the deck with every default filled in
+  std::string prep_hash;         // hash of what rkprep depends on (geometry, discretization, CAD bytes)
+};
+
+// One "key.path=value" override from the command line (--set).
+struct Override {
+  std::string path;
+  std::string value;
+};
+Override parse_override(const std::string& text);
+
+enum class Side { prep, solve };
+
+// Reads, applies overrides, validates and fills defaults. Throws rk::Error naming file, line and key.
+// With Side::solve, an override of a key that prep depends on is refused (re-run rkprep instead).
+Scene load_scene(const std::filesystem::path& file, const std::vector<Override>& overrides = {},
+                 Side side = Side::prep);
+
+// Basis requirements: the smallest dilation with which the moment matrix stays regular.
+double minimum_dilation(const std::string& basis);
+
+}  // namespace rk

@@ -1,0 +1,59 @@
+// The per-rank subdomain file (CASE/sub/rank_NNNN.h5): what one rank needs to run, written by rkprep,
+// read by rksolve. Layout (HDF5, every dataset Fletcher32-checksummed):
+//   attrs   format_version, rank, ranks, scene_hash, units="SI"
+//   particles/{global_id, X[n,3], volume, spacing, owner, flags}      local particles (owned + overlap)
+//   cells/{global_id, node_offsets[c+1], nodes}                      integration cells of this rank
+//   points/{X[m,3], weight, cell}                                    their integration points
+//   overlap/ranks, overlap/rank_NNNN                                 per neighbour: shared local
+//                                                                    particle indices, ascending global id
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rk {
+
+inline constexpr std::int64_t kFormatVersion = 1;
+
+enum ParticleFlag : std::uint8_t { kSurface = 1 };
+
+struct Subdomain {
+  std::int64_t rank = 0, ranks = 1;
+  std::string scene_hash;
+
+  // Local particles, sorted by global id.
+  std::vector<std::int64_t> global_id;
+  std::vector<double> X;        // reference position, 3 per particle (m)
+  std::vector<double> volume;   // m^3, consistent with the cell volumes
+  std::vector<double> spacing;  // local particle spacing h_I (m); support radius = dilation * h_I
+  std::vector<std::int32_t> owner;
+  std::vector<std::uint8_t> flags;
+
+  // Integration cells (elements of the prep mesh) assigned to this rank, nodes as local indices.
+  std::vector<std::int64_t> cell_global_id;
+  std::vector<std::int32_t> cell_node_offsets;
+  std::vector<std::int32_t> cell_nodes;
+
+  // Integration points of those cells.
+  std::vector<double> point_X;       // 3 per point (m)
+  std::vector<double> point_weight;  // m^3
+  std::vector<std::int32_t> point_cell;
+
+  // Overlap maps: for neighbour_ranks[k], the shared particles' local indices (ascending global id).
+  std::vector<std::int32_t> neighbour_ranks;
+  std::vector<std::vector<std::int32_t>> overlap;
+
+  std::size_t particle_count() const { return global_id.size(); }
+  std::size_t cell_count() const { return cell_global_id.size(); }
+  std::size_t point_count() const { return point_weight.size(); }
+};
+
+std::string subdomain_path(const std::string& case_dir, int rank);
+
+void write_subdomain(const std::string& path, const Subdomain& s);
+
+// Reads and checks that the file belongs to this run: format version, rank, rank count, scene hash,
+// consistent counts and finite coordinates. Any mismatch is an rk::Error naming the file and problem.
+Subdomain read_subdomain(const std::string& path, int rank, int ranks, const std::string& scene_hash);
+
+}  // namespace rk

@@ -1,0 +1,28 @@
+// The MPI world as the solver sees it: reductions and collective error checks. With the overlap
+// exchange (overlap_exchange.cpp) these are the only places that call MPI.
+#pragma once
+#include <mpi.h>
+
+#include <string>
+
+namespace rk {
+
+class Comm {
+ public:
+  Comm();
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  void max(double* values, int count) const;  // in place, over all ranks
+  void sum(double* values, int count) const;
+  void min(double* values, int count) const;
+  // Every rank calls it. If any rank is not ok, every rank throws rk::Error with the message of the
+  // lowest failing rank: one clear message, no hang, no rank left waiting.
+  void check(bool ok, const std::string& message) const;
+  void barrier() const;
+  double wtime() const { return MPI_Wtime(); }
+
+ private:
+  int rank_ = 0, size_ = 1;
+};
+
+}  // namespace rk

@@ -1,0 +1,33 @@
+#include "energy.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rk {
+
+Energies compute_energies(const Model& md, const State& st, const std::vector<double>& v_old, const Comm& comm) {
+  double e[5] = {0, 0, 0, st.external_work, st.contact_work};
+  for (std::size_t I = 0; I < md.n; ++I) {
+    if (!md.owned[I]) continue;
+    double v2 = 0;
+    for (int i = 0; i < 3; ++i) {
+      const double vb = 0.5 * (v_old[3 * I + i] + st.v[3 * I + i]);
+      v2 += vb * vb;
+    }
+    e[0] += 0.5 * md.mass[I] * v2;
+  }
+  for (std::size_t g = 0; g < md.m; ++g) {
+    e[1] += md.weight[g] * (st.psi[g] + st.wp[g]);
+    e[2] += md.weight[g] * st.wp[g];
+  }
+  comm.sum(e, 5);
+  return {e[0], e[1], e[2], e[3], e[4]};
+}
+
+double energy_error(const Energies& e, double kinetic0) {
+  const double scale = std::max(kinetic0, std::abs(e.external));
+  if (!(scale > 0)) return 0.0;
+  return std::abs(e.kinetic + e.internal - kinetic0 - e.external - e.contact) / scale;
+}
+
+}  // namespace rk

@@ -1,0 +1,22 @@
+// Energy monitor (DESIGN.md section 3): kinetic, internal (stored elastic + plastic work, from the
+// material state, not from the forces) and the work of the boundary forces; see energy_error().
+#pragma once
+#include <vector>
+
+#include "comm.hpp"
+#include "model.hpp"
+#include "state.hpp"
+
+namespace rk {
+
+struct Energies {
+  double kinetic = 0, internal = 0, plastic = 0, external = 0, contact = 0;
+};
+
+// Whole-model totals at time t^n; kinetic energy from vbar = (v^{n-1/2} + v^{n+1/2}) / 2.
+Energies compute_energies(const Model& md, const State& st, const std::vector<double>& v_old, const Comm& comm);
+
+// |E(t) - E(0) - W_ext - W_contact| / max(KE0, |W_ext|).
+double energy_error(const Energies& e, double kinetic0);
+
+}  // namespace rk

@@ -1,0 +1,20 @@
+#include "internal_force.hpp"
+
+#include <algorithm>
+
+namespace rk {
+
+void compute_internal_force(const Model& md, State& st, const FixedScale& scale) {
+  std::fill(st.partial.begin(), st.partial.end(), int128(0));
+  for (std::size_t g = 0; g < md.m; ++g) {
+    const double w = md.weight[g];
+    const double* P = &st.P[9 * g];
+    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
+      const double* d = &md.dN[3 * std::size_t(k)];
+      int128* f = &st.partial[3 * std::size_t(md.nbr[k])];
+      for (int i = 0; i < 3; ++i) f[i] += scale.fixed(w * (P[3 * i] * d[0] + P[3 * i + 1] * d[1] + P[3 * i + 2] * d[2]));
+    }
+  }
+}
+
+}  // namespace rk

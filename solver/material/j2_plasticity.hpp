@@ -1,0 +1,30 @@
+// Finite-strain J2 plasticity, logarithmic elastic strain, radial return in Kirchhoff stress
+// (Simo 1992; de Souza Neto, Peric & Owen, Computational Methods for Plasticity, box 14.3).
+// The plastic state is C_p^{-1} (so b_e^trial = F C_p^{-1} F^T depends on F only: objective by
+// construction) and the equivalent plastic strain ep. Linear isotropic hardening
+// sigma_y = sigma_y0 + H ep; `plastic = false` gives the Hencky hyperelastic special case.
+#pragma once
+#include <Eigen/Dense>
+
+namespace rk {
+
+struct J2Params {
+  double bulk = 0, shear = 0;              // K, G (Pa)
+  double yield0 = 0, hardening = 0;        // sigma_y0, H (Pa)
+  bool plastic = true;
+  static J2Params from(double E, double nu, double yield0, double H, bool plastic) {
+    return {E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu)), yield0, H, plastic};
+  }
+};
+
+struct J2Update {
+  Eigen::Matrix3d tau;    // Kirchhoff stress (Pa)
+  double psi = 0;         // stored elastic energy per reference volume (J/m^3)
+  double dissipation = 0; // plastic work of this increment per reference volume (J/m^3)
+};
+
+// Voigt order of the stored symmetric C_p^{-1}: xx, yy, zz, xy, yz, zx.
+// Updates cp_inv and ep in place. F must have det F > 0.
+J2Update j2_update(const Eigen::Matrix3d& F, const J2Params& p, double cp_inv[6], double& ep);
+
+}  // namespace rk

@@ -1,0 +1,111 @@
+#include "model.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <sstream>
+
+#include "error.hpp"
+#include "neighbour_grid.hpp"
+#include "rk_shape.hpp"
+
+namespace rk {
+namespace {
+
+void build_constraints(Model& md, const Scene& scene) {
+  md.constraint_offsets.assign(1, 0);
+  for (std::size_t I = 0; I < md.n; ++I) {
+    std::vector<Eigen::Vector3d> dirs;
+    for (const auto& pl : scene.symmetry_planes) {
+      const double d = (md.X[3 * I] - pl.point[0]) * pl.normal[0] + (md.X[3 * I + 1] - pl.point[1]) * pl.normal[1] +
+                       (md.X[3 * I + 2] - pl.point[2]) * pl.normal[2];
+      if (std::abs(d) > 1e-6 * md.spacing[I]) continue;
+      Eigen::Vector3d v(pl.normal[0], pl.normal[1], pl.normal[2]);
+      for (const auto& e : dirs) v -= v.dot(e) * e;  // Gram-Schmidt: exact for any plane normals
+      if (v.norm() > 1e-8) dirs.push_back(v.normalized());
+    }
+    for (const auto& e : dirs) md.constraint_dirs.insert(md.constraint_dirs.end(), e.data(), e.data() + 3);
+    md.constraint_offsets.push_back(std::int32_t(md.constraint_dirs.size() / 3));
+  }
+}
+
+void build_shape_functions(Model& md, const Subdomain& sub, const Scene& scene) {
+  std::vector<double> radius(md.n);
+  for (std::size_t I = 0; I < md.n; ++I) radius[I] = scene.discretization.dilation * md.spacing[I];
+  NeighbourGrid grid(md.X.data(), radius.data(), md.n);
+  const RkParticles particles{md.X.data(), sub.volume.data(), radius.data()};
+  const Kernel kernel = parse_kernel(scene.discretization.kernel);
+  const Basis basis = parse_basis(scene.discretization.basis);
+  md.nbr_offsets.assign(1, 0);
+  md.dN_max.resize(md.m);
+  std::vector<std::int32_t> found;
+  for (std::size_t g = 0; g < md.m; ++g) {
+    found.clear();
+    grid.covering(&sub.point_X[3 * g], found);  // ascending local index = ascending global id
+    const std::size_t k0 = md.nbr.size();
+    md.nbr.insert(md.nbr.end(), found.begin(), found.end());
+    md.N.resize(md.nbr.size());
+    md.dN.resize(3 * md.nbr.size());
+    const RkResult r = rk_shape(&sub.point_X[3 * g], found, particles, kernel, basis, &md.N[k0], &md.dN[3 * k0]);
+    if (!r.regular) {
+      std::ostringstream s;
+      s << "rank " << md.rank << ": the RK moment matrix is singular at the integration point at (" << sub.point_X[3 * g]
+        << ", " << sub.point_X[3 * g + 1] << ", " << sub.point_X[3 * g + 2] << ") m with " << found.size()
+        << " particles in its support (rcond " << r.rcond << "); increase discretization.dilation";
+      throw Error(s.str());
+    }
+    double mx = 0;
+    for (std::size_t k = k0; k < md.nbr.size(); ++k)
+      mx = std::max(mx, std::sqrt(md.dN[3 * k] * md.dN[3 * k] + md.dN[3 * k + 1] * md.dN[3 * k + 1] +
+                                  md.dN[3 * k + 2] * md.dN[3 * k + 2]));
+    md.dN_max[g] = mx;
+    md.nbr_offsets.push_back(std::int32_t(md.nbr.size()));
+  }
+}
+
+}  // namespace
+
+Model build_model(const Subdomain& sub, const Scene& scene) {
+  Model md;
+  md.rank = int(sub.rank);
+  md.ranks = int(sub.ranks);
+  md.n = sub.particle_count();
+  md.global_id = sub.global_id;
+  md.X = sub.X;
+  md.spacing = sub.spacing;
+  md.density = scene.material.density;
+  md.mass.resize(md.n);
+  md.owned.resize(md.n);
+  md.surface.resize(md.n);
+  for (std::size_t I = 0; I < md.n; ++I) {
+    md.mass[I] = md.density * sub.volume[I];
+    md.owned[I] = sub.owner[I] == sub.rank;
+    md.surface[I] = (sub.flags[I] & kSurface) != 0;
+  }
+  build_constraints(md, scene);
+
+  md.m = sub.point_count();
+  md.weight = sub.point_weight;
+  md.cells = sub.cell_count();
+  md.cell_node_offsets = sub.cell_node_offsets;
+  md.cell_nodes = sub.cell_nodes;
+  md.cell_points.assign(md.cells + 1, 0);
+  for (std::size_t g = 0; g < md.m; ++g) {
+    if (g > 0 && sub.point_cell[g] < sub.point_cell[g - 1])
+      throw Error("subdomain of rank " + std::to_string(md.rank) + ": integration points are not grouped by cell");
+    ++md.cell_points[sub.point_cell[g] + 1];
+  }
+  for (std::size_t c = 0; c < md.cells; ++c) md.cell_points[c + 1] += md.cell_points[c];
+  build_shape_functions(md, sub, scene);
+
+  md.neighbour_ranks = sub.neighbour_ranks;
+  md.overlap = sub.overlap;
+
+  const auto& mat = scene.material;
+  md.material = J2Params::from(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress, mat.hardening_modulus,
+                               mat.model == MaterialModel::j2_linear);
+  md.wave_modulus = md.material.bulk + 4.0 / 3.0 * md.material.shear;
+  md.fbar = scene.discretization.volumetric == "fbar";
+  return md;
+}
+
+}  // namespace rk

@@ -1,0 +1,51 @@
+// Offline data (never changes during a run, never checkpointed): the local particles, the rank's
+// integration points with their neighbour lists and RK shape-function values and gradients stored in
+// CSR aligned with the neighbour columns, the cells (for F-bar and the time step), the constraints.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "material/j2_plasticity.hpp"
+#include "scene.hpp"
+#include "subdomain.hpp"
+
+namespace rk {
+
+struct Model {
+  int rank = 0, ranks = 1;
+  // particles (local = owned + overlap), SoA
+  std::size_t n = 0;
+  std::vector<std::int64_t> global_id;
+  std::vector<double> X, mass, spacing;
+  std::vector<std::uint8_t> owned, surface;
+  // constraint directions of particles on symmetry planes: orthonormal, CSR per particle
+  std::vector<std::int32_t> constraint_offsets;
+  std::vector<double> constraint_dirs;  // 3 per direction
+
+  // integration points, SoA; neighbours and shape data in CSR (point -> columns)
+  std::size_t m = 0;
+  std::vector<double> weight;
+  std::vector<std::int32_t> nbr_offsets, nbr;
+  std::vector<double> N, dN;   // N_I(X_g); dN_I/dX (3 per column)
+  std::vector<double> dN_max;  // max_I |grad N_I(X_g)|, bounds the force contributions
+
+  // cells: their points are contiguous, cell_points[c]..cell_points[c+1]
+  std::size_t cells = 0;
+  std::vector<std::int32_t> cell_points, cell_node_offsets, cell_nodes;
+
+  // overlap maps (seed Fig. 3)
+  std::vector<std::int32_t> neighbour_ranks;
+  std::vector<std::vector<std::int32_t>> overlap;
+
+  J2Params material;
+  double density = 0;
+  double wave_modulus = 0;  // K + 4G/3, for the dilatational wave speed
+  bool fbar = true;
+};
+
+// Builds the model from this rank's subdomain: neighbour search and shape functions at the points.
+// Throws rk::Error naming the point if a moment matrix is singular.
+Model build_model(const Subdomain& sub, const Scene& scene);
+
+}  // namespace rk

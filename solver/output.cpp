@@ -1,0 +1,119 @@
+#include "output.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "error.hpp"
+#include "h5file.hpp"
+
+namespace rk {
+namespace {
+
+constexpr int kProjected = 4;  // weight, eq_plastic_strain, von_mises, pressure
+
+// Cauchy von Mises stress and pressure of a point from its Kirchhoff stress (sigma = tau / J).
+void cauchy_measures(const double* tau, double J, double& von_mises, double& pressure) {
+  const double p = (tau[0] + tau[1] + tau[2]) / 3;
+  const double s[6] = {tau[0] - p, tau[1] - p, tau[2] - p, tau[3], tau[4], tau[5]};
+  const double q2 = 1.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
+  von_mises = std::sqrt(q2) / J;
+  pressure = -p / J;
+}
+
+}  // namespace
+
+ResultWriter::ResultWriter(const std::string& case_dir, const Model& md)
+    : exchange_(md, kProjected), partial_(kProjected * md.n) {
+  std::filesystem::create_directories(case_dir + "/results");
+  char name[32];
+  std::snprintf(name, sizeof name, "/results/rank_%04d.h5", md.rank);
+  path_ = case_dir + name;
+  H5File f(path_, H5File::Mode::create);
+  f.set_attr("rank", std::int64_t(md.rank));
+  f.set_attr("ranks", std::int64_t(md.ranks));
+  f.set_attr("frames", std::int64_t(0));
+}
+
+void ResultWriter::write_frame(const Model& md, const State& st, const std::vector<double>& velocity,
+                               const Comm& comm) {
+  // Particle values of point quantities: q_I = sum_g w_g N_I(X_g) q_g / sum_g w_g N_I(X_g), summed
+  // over ranks in fixed point so every copy and every rank count gives the same value.
+  std::vector<double> q(kProjected * md.m);
+  double bound[kProjected] = {0, 0, 0, 0};
+  for (std::size_t g = 0; g < md.m; ++g) {
+    double vm, p;
+    cauchy_measures(&st.tau[6 * g], st.J[g], vm, p);
+    const double values[kProjected] = {1.0, st.ep[g], vm, p};
+    double nmax = 0;
+    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) nmax = std::max(nmax, std::abs(md.N[k]));
+    for (int c = 0; c < kProjected; ++c) {
+      q[kProjected * g + c] = values[c];
+      bound[c] = std::max(bound[c], md.weight[g] * nmax * std::abs(values[c]));
+    }
+  }
+  comm.max(bound, kProjected);
+  FixedScale scale[kProjected];
+  for (int c = 0; c < kProjected; ++c) scale[c] = FixedScale::for_bound(bound[c]);
+  std::fill(partial_.begin(), partial_.end(), int128(0));
+  for (std::size_t g = 0; g < md.m; ++g)
+    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
+      for (int c = 0; c < kProjected; ++c)
+        partial_[kProjected * std::size_t(md.nbr[k]) + c] += scale[c].fixed(md.weight[g] * md.N[k] * q[kProjected * g + c]);
+  exchange_.sum(partial_);
+
+  std::vector<std::int64_t> gid;
+  std::vector<double> x, u, v, ep, vm, pr;
+  for (std::size_t I = 0; I < md.n; ++I) {
+    if (!md.owned[I]) continue;
+    gid.push_back(md.global_id[I]);
+    for (int i = 0; i < 3; ++i) {
+      x.push_back(md.X[3 * I + i] + st.u[3 * I + i]);
+      u.push_back(st.u[3 * I + i]);
+      v.push_back(velocity[3 * I + i]);
+    }
+    const double w = scale[0].real(partial_[kProjected * I]);
+    auto value = [&](int c) { return w > 0 ? scale[c].real(partial_[kProjected * I + c]) / w : 0.0; };
+    ep.push_back(value(1));
+    vm.push_back(value(2));
+    pr.push_back(value(3));
+  }
+  H5File f(path_, H5File::Mode::append);
+  char group[32];
+  std::snprintf(group, sizeof group, "frames/%05d/", frames_);
+  const std::string g(group);
+  f.write(g + "time", std::vector<double>{st.t});
+  f.write(g + "step", std::vector<std::int64_t>{st.step});
+  f.write(g + "global_id", gid);
+  f.write(g + "x", x, 3);
+  f.write(g + "displacement", u, 3);
+  f.write(g + "velocity", v, 3);
+  f.write(g + "eq_plastic_strain", ep);
+  f.write(g + "von_mises", vm);
+  f.write(g + "pressure", pr);
+  f.set_attr("frames", std::int64_t(++frames_));
+}
+
+HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::string>& wall_names) {
+  file_ = std::fopen(path.c_str(), "w");
+  if (!file_) throw Error(path + ": cannot write the history file");
+  std::fprintf(file_, "time,dt,kinetic,internal,plastic_work,external_work,contact_work,energy_error,contacts");
+  for (const auto& w : wall_names) std::fprintf(file_, ",%s.force", w.c_str());
+  std::fprintf(file_, "\n");
+}
+
+HistoryWriter::~HistoryWriter() {
+  if (file_) std::fclose(file_);
+}
+
+void HistoryWriter::write(const HistoryRow& r) {
+  std::fprintf(file_, "%.9e,%.6e,%.9e,%.9e,%.9e,%.9e,%.9e,%.6e,%lld", r.time, r.dt, r.e.kinetic, r.e.internal,
+               r.e.plastic, r.e.external, r.e.contact, r.energy_error, static_cast<long long>(r.contacts));
+  for (double f : r.wall_force) std::fprintf(file_, ",%.9e", f);
+  std::fprintf(file_, "\n");
+  std::fflush(file_);
+}
+
+}  // namespace rk

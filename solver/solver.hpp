@@ -1,0 +1,19 @@
+// rksolve's driver: read this rank's subdomain, build the offline data, run the explicit loop.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "comm.hpp"
+#include "scene.hpp"
+
+namespace rk {
+
+struct SolveOptions {
+  std::string case_dir;
+  std::vector<Override> overrides;
+  bool quiet = false;
+};
+
+void solve_case(const SolveOptions& options, const Comm& comm);
+
+}  // namespace rk

@@ -1,0 +1,41 @@
+// The state that evolves (and is all a checkpoint needs): particle displacements and velocities,
+// integration-point plastic state and stress. Structure of arrays; sizes fixed at start-up so the
+// step loop never allocates. Voigt order for symmetric tensors: xx, yy, zz, xy, yz, zx.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "fixed_point.hpp"
+#include "model.hpp"
+
+namespace rk {
+
+struct State {
+  double t = 0;
+  std::int64_t step = 0;
+  double dt_half = 0;  // dt^{n-1/2}, the step that led to the current positions
+
+  // particles (3 per particle)
+  std::vector<double> u, v, force;  // displacement d_I, velocity, net internal force f^int_I
+  std::vector<int128> partial;      // fixed-point force accumulators (own points, then summed)
+
+  // integration points
+  std::vector<double> F;       // 9 per point, row-major F_ik = delta_ik + sum_I u_Ii dN_I/dX_k
+  std::vector<double> J;       // det F
+  std::vector<double> P;       // 9 per point, first Piola-Kirchhoff stress used in the force
+  std::vector<double> tau;     // 6 per point, Kirchhoff stress (F-bar)
+  std::vector<double> cp_inv;  // 6 per point, plastic state C_p^{-1}
+  std::vector<double> ep;      // equivalent plastic strain
+  std::vector<double> psi;     // stored elastic energy density (J/m^3, reference volume)
+  std::vector<double> wp;      // accumulated plastic work density (J/m^3, reference volume)
+  std::vector<double> force_bound;  // per point: w |P| max|grad N|, bounds its force contributions
+  std::vector<double> cell_J;  // cell-averaged det F (F-bar)
+
+  // work of boundary forces done on the OWNED particles of this rank (sum over ranks = total)
+  double contact_work = 0, external_work = 0;
+  std::int64_t contacts = 0;
+
+  static State initial(const Model& md, const double velocity[3]);
+};
+
+}  // namespace rk

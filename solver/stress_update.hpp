@@ -1,0 +1,22 @@
+// Pointwise material update at the integration points, with the F-bar treatment of the volumetric
+// part (de Souza Neto et al. 1996): the material sees Fbar = (Jbar/J)^{1/3} F with Jbar the cell
+// average of det F, which removes volumetric locking of isochoric plastic flow. The stress entering
+// the internal force is the variationally consistent one,
+//   tau_eff = dev(tau(Fbar)) + J p_c I,   p_c = sum_g w_g tr(tau_g)/3 / sum_g w_g J_g  (per cell),
+//   P = tau_eff F^{-T},
+// so that sum_g w_g P : dF equals the rate of the stored energy plus dissipation (energy closes).
+#pragma once
+#include "model.hpp"
+#include "state.hpp"
+
+namespace rk {
+
+struct StressHealth {
+  bool ok = true;
+  std::size_t point = 0;  // first failing point
+  double J = 1;
+};
+
+StressHealth update_stress(const Model& md, State& st);
+
+}  // namespace rk
