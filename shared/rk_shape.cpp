@@ -64,8 +64,10 @@ RkResult shape(const double x[3], std::span<const std::int32_t> nb, const RkPart
   }
   Eigen::LDLT<Mat> ldlt(M);
   RkResult result;
-  result.rcond = ldlt.rcond();
-  if (ldlt.info() != Eigen::Success || !(result.rcond > 1e-14)) return result;
+  // Pivot ratio of the scaled moment matrix: LDLT's own rcond() ignores zero pivots.
+  const Vec D = ldlt.vectorD().cwiseAbs();
+  result.rcond = D.maxCoeff() > 0 ? D.minCoeff() / D.maxCoeff() : 0.0;
+  if (ldlt.info() != Eigen::Success || !(result.rcond > 1e-10)) return result;
   result.regular = true;
 
   Vec e0 = Vec::Zero();

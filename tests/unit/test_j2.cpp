@@ -1,1 +1,100 @@
+// J2 return mapping (BENCHMARKS.md section 6): uniaxial stress-strain curve against the closed form,
+// stress on the yield surface after plastic steps, objectivity under a rigid rotation.
 #include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "material/j2_plasticity.hpp"
+
+namespace {
+
+const rk::J2Params kCopper = rk::J2Params::from(117e9, 0.35, 400e6, 100e6, true);
+
+double von_mises(const Eigen::Matrix3d& tau) {
+  const Eigen::Matrix3d s = tau - tau.trace() / 3 * Eigen::Matrix3d::Identity();
+  return std::sqrt(1.5 * (s.array() * s.array()).sum());
+}
+
+// Uniaxial stress along x in log strain eps: the lateral stretch is found so that tau_yy = tau_zz = 0.
+struct Uniaxial {
+  double cp[6] = {1, 1, 1, 0, 0, 0};
+  double ep = 0;
+  rk::J2Update step(double eps) {
+    double lam = std::exp(-0.35 * eps), lo = 0.2, hi = 1.5;
+    rk::J2Update up;
+    for (int it = 0; it < 200; ++it) {  // bisection on the lateral stretch
+      lam = 0.5 * (lo + hi);
+      double cp_try[6];
+      std::copy(cp, cp + 6, cp_try);
+      double ep_try = ep;
+      up = rk::j2_update(Eigen::Vector3d(std::exp(eps), lam, lam).asDiagonal().toDenseMatrix(), kCopper, cp_try, ep_try);
+      (up.tau(1, 1) > 0 ? hi : lo) = lam;
+    }
+    up = rk::j2_update(Eigen::Vector3d(std::exp(eps), lam, lam).asDiagonal().toDenseMatrix(), kCopper, cp, ep);
+    return up;
+  }
+};
+
+TEST(J2, UniaxialCurveMatchesClosedForm) {
+  // Elastic: tau = E eps. Plastic (linear hardening, log strains): tau = (sy0 + H eps) / (1 + H/E).
+  const double E = 117e9, sy0 = 400e6, H = 100e6;
+  Uniaxial test;
+  for (double eps = 0.0005; eps <= 0.5; eps += 0.0005) {
+    const rk::J2Update up = test.step(eps);
+    const double expected = eps < sy0 / E ? E * eps : (sy0 + H * eps) / (1 + H / E);
+    ASSERT_NEAR(up.tau(0, 0), expected, 1e-6 * expected) << "eps = " << eps;
+    ASSERT_NEAR(up.tau(1, 1), 0.0, 1e-3 * expected);
+  }
+  EXPECT_NEAR(test.ep, 0.5 - test.step(0.5).tau(0, 0) / E, 1e-6);
+}
+
+TEST(J2, PlasticStressStaysOnTheYieldSurface) {
+  double cp[6] = {1, 1, 1, 0, 0, 0}, ep = 0;
+  Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+  for (int k = 1; k <= 50; ++k) {  // a non-proportional path: shear then stretch
+    F(0, 1) = 0.01 * k;
+    F(2, 2) = 1 + 0.004 * k;
+    const rk::J2Update up = rk::j2_update(F, kCopper, cp, ep);
+    if (ep > 0) {
+      EXPECT_NEAR(von_mises(up.tau), 400e6 + 100e6 * ep, 1e-9 * 400e6) << "step " << k;
+      EXPECT_GT(up.dissipation, 0.0);
+    }
+  }
+  EXPECT_GT(ep, 0.1);
+}
+
+TEST(J2, RigidRotationRotatesTheStressAndChangesNothingElse) {
+  double cp[6] = {1, 1, 1, 0, 0, 0}, ep = 0;
+  Eigen::Matrix3d F;
+  F << 1.08, 0.05, 0.0, 0.02, 0.95, 0.03, 0.0, 0.01, 0.99;
+  const rk::J2Update first = rk::j2_update(F, kCopper, cp, ep);
+  ASSERT_GT(ep, 0.0);
+  // continue from the same plastic state once with F2 and once with R F2
+  Eigen::Matrix3d F2 = F;
+  F2(0, 0) += 0.01;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  double cpa[6], cpb[6], epa = ep, epb = ep;
+  std::copy(cp, cp + 6, cpa), std::copy(cp, cp + 6, cpb);
+  const rk::J2Update a = rk::j2_update(F2, kCopper, cpa, epa);
+  const rk::J2Update b = rk::j2_update(R * F2, kCopper, cpb, epb);
+  EXPECT_NEAR(epa, epb, 1e-14);
+  EXPECT_NEAR(a.psi, b.psi, 1e-9 * std::abs(a.psi));
+  EXPECT_LT((R * a.tau * R.transpose() - b.tau).norm(), 1e-9 * a.tau.norm());
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(cpa[i], cpb[i], 1e-12) << "plastic state is rotation invariant";
+  (void)first;
+}
+
+TEST(J2, ElasticModelNeverYields) {
+  const rk::J2Params elastic = rk::J2Params::from(71e9, 0.3, 0, 0, false);
+  double cp[6] = {1, 1, 1, 0, 0, 0}, ep = 0;
+  Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+  F(0, 0) = 1.2;
+  const rk::J2Update up = rk::j2_update(F, elastic, cp, ep);
+  EXPECT_EQ(ep, 0.0);
+  EXPECT_EQ(up.dissipation, 0.0);
+  // Hencky: stored energy = K/2 vol^2 + G |dev eps|^2
+  const double e = std::log(1.2), K = elastic.bulk, G = elastic.shear;
+  EXPECT_NEAR(up.psi, 0.5 * K * e * e + G * (2.0 / 3.0) * e * e, 1e-9 * up.psi);
+}
+
+}  // namespace

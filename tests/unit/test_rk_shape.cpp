@@ -1,1 +1,92 @@
+// Reproducing conditions of the RK shape functions (BENCHMARKS.md section 6): regular, 20 %-jittered
+// and near-boundary particles, a/h = 1.5 and 2 (linear), 2.5 (quadratic).
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "neighbour_grid.hpp"
+#include "rk_shape.hpp"
+
+namespace {
+
+struct Cloud {
+  std::vector<double> X, V, a;
+};
+
+Cloud lattice(int n, double h, double jitter, double dilation) {
+  Cloud c;
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int idx[3] = {i, j, k};
+        for (int d = 0; d < 3; ++d) c.X.push_back(h * idx[d] + jitter * h * u(rng));
+        c.V.push_back(h * h * h);
+        c.a.push_back(dilation * h);
+      }
+  return c;
+}
+
+struct Case {
+  double jitter, dilation;
+  rk::Basis basis;
+};
+
+class Reproducing : public ::testing::TestWithParam<Case> {};
+
+TEST_P(Reproducing, PolynomialsAndGradientsToRoundOff) {
+  const Case p = GetParam();
+  const double h = 1e-3;  // millimetre spacing: the conditions must hold at the solver's scales
+  Cloud c = lattice(8, h, p.jitter, p.dilation);
+  rk::NeighbourGrid grid(c.X.data(), c.a.data(), c.a.size());
+  const rk::RkParticles parts{c.X.data(), c.V.data(), c.a.data()};
+  // interior, near a face, near an edge, at a corner
+  const double points[4][3] = {{3.3 * h, 3.7 * h, 4.1 * h}, {0.1 * h, 3.2 * h, 3.9 * h}, {0.05 * h, 0.2 * h, 4 * h}, {0, 0, 0}};
+  for (const auto& x : points) {
+    std::vector<std::int32_t> nb;
+    grid.covering(x, nb);
+    std::vector<double> N(nb.size()), dN(3 * nb.size());
+    const auto r = rk::rk_shape(x, nb, parts, rk::Kernel::cubic_bspline, p.basis, N.data(), dN.data());
+    ASSERT_TRUE(r.regular) << "at " << x[0] << "," << x[1] << "," << x[2];
+    double sum = 0, first[3] = {0, 0, 0}, grad[3] = {0, 0, 0}, second[3][3] = {}, quad[6] = {};
+    for (std::size_t k = 0; k < nb.size(); ++k) {
+      const double* X = &c.X[3 * nb[k]];
+      sum += N[k];
+      for (int i = 0; i < 3; ++i) {
+        first[i] += N[k] * X[i];
+        grad[i] += dN[3 * k + i];
+        for (int j = 0; j < 3; ++j) second[i][j] += X[i] * dN[3 * k + j];
+      }
+      for (int i = 0; i < 3; ++i) quad[i] += N[k] * X[i] * X[i];
+      quad[3] += N[k] * X[0] * X[1], quad[4] += N[k] * X[1] * X[2], quad[5] += N[k] * X[2] * X[0];
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-12);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(first[i] / h, x[i] / h, 1e-12) << "sum N_I X_I = X";
+      EXPECT_NEAR(grad[i] * h, 0.0, 1e-12) << "sum grad N_I = 0";
+      for (int j = 0; j < 3; ++j) EXPECT_NEAR(second[i][j], i == j ? 1.0 : 0.0, 1e-12) << "sum X_I (x) grad N_I = I";
+    }
+    if (p.basis == rk::Basis::quadratic) {
+      const double exact[6] = {x[0] * x[0], x[1] * x[1], x[2] * x[2], x[0] * x[1], x[1] * x[2], x[2] * x[0]};
+      for (int i = 0; i < 6; ++i) EXPECT_NEAR(quad[i] / (h * h), exact[i] / (h * h), 1e-12) << "quadratic term " << i;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Clouds, Reproducing,
+                         ::testing::Values(Case{0.0, 1.5, rk::Basis::linear}, Case{0.0, 2.0, rk::Basis::linear},
+                                           Case{0.2, 1.5, rk::Basis::linear}, Case{0.2, 2.0, rk::Basis::linear},
+                                           Case{0.0, 2.5, rk::Basis::quadratic}, Case{0.2, 2.5, rk::Basis::quadratic}));
+
+TEST(RkShape, TooFewNeighboursIsReportedSingular) {
+  Cloud c = lattice(4, 1.0, 0.0, 0.9);  // support smaller than the spacing: one particle per point
+  const rk::RkParticles parts{c.X.data(), c.V.data(), c.a.data()};
+  std::vector<std::int32_t> nb{0};
+  double N[1], dN[3];
+  const double x[3] = {0.1, 0.1, 0.1};
+  EXPECT_FALSE(rk::rk_shape(x, nb, parts, rk::Kernel::cubic_bspline, rk::Basis::linear, N, dN).regular);
+}
+
+}  // namespace

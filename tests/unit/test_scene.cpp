@@ -1,1 +1,114 @@
+// Scene validation: each kind of bad input is one error naming the file, the line and the key.
 #include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "error.hpp"
+#include "scene.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kGood = R"(geometry:
+  cad: bar.geo
+  unit: mm
+discretization:
+  spacing: 1.0e-3
+material:
+  model: j2_linear
+  density: 8930
+  youngs_modulus: 117.0e9
+  poisson_ratio: 0.35
+  yield_stress: 400.0e6
+time:
+  end: 1.0e-6
+)";
+
+std::string write_scene(const std::string& text) {
+  const auto path = (fs::temp_directory_path() / "rk_scene_test.yaml").string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string error_of(const std::string& text, const std::vector<rk::Override>& o = {}, rk::Side side = rk::Side::prep) {
+  try {
+    rk::load_scene(write_scene(text), o, side);
+  } catch (const rk::Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  return s.replace(s.find(from), from.size(), to);
+}
+
+TEST(Scene, GoodSceneResolvesDefaults) {
+  const rk::Scene s = rk::load_scene(write_scene(kGood));
+  EXPECT_DOUBLE_EQ(s.geometry.unit, 1e-3);
+  EXPECT_DOUBLE_EQ(s.discretization.dilation, 2.0);
+  EXPECT_EQ(s.discretization.gauss_order, 2);
+  EXPECT_DOUBLE_EQ(s.time.output_interval, 1e-7);
+  EXPECT_NE(s.resolved_yaml.find("cfl: 0.5"), std::string::npos);
+  EXPECT_TRUE(fs::path(s.geometry.cad).is_absolute());
+  EXPECT_EQ(s.prep_hash.size(), 16u);
+}
+
+TEST(Scene, UnknownKey) {
+  const auto e = error_of(replace(kGood, "  density: 8930", "  density: 8930\n  colour: red"));
+  EXPECT_TRUE(std::regex_search(e, std::regex(R"(rk_scene_test\.yaml:9: unknown key 'material\.colour')"))) << e;
+}
+
+TEST(Scene, MissingKey) {
+  const auto e = error_of(replace(kGood, "  yield_stress: 400.0e6\n", ""));
+  EXPECT_NE(e.find("missing key 'material.yield_stress'"), std::string::npos) << e;
+  EXPECT_NE(e.find("rk_scene_test.yaml:7"), std::string::npos) << e;  // the material section's line
+}
+
+TEST(Scene, WrongType) {
+  const auto e = error_of(replace(kGood, "117.0e9", "hard"));
+  EXPECT_NE(e.find("rk_scene_test.yaml:9: key 'material.youngs_modulus' must be a number"), std::string::npos) << e;
+}
+
+TEST(Scene, IncompressiblePoissonRatio) {
+  const auto e = error_of(replace(kGood, "0.35", "0.5"));
+  EXPECT_NE(e.find("rk_scene_test.yaml:10: key 'material.poisson_ratio' = 0.5 is out of range (-1, 0.5)"),
+            std::string::npos)
+      << e;
+}
+
+TEST(Scene, NegativeDensity) {
+  const auto e = error_of(replace(kGood, "8930", "-8930"));
+  EXPECT_NE(e.find("rk_scene_test.yaml:8: key 'material.density' = -8930 is out of range"), std::string::npos) << e;
+}
+
+TEST(Scene, SupportTooSmallForTheBasis) {
+  const auto e = error_of(replace(kGood, "  spacing: 1.0e-3", "  spacing: 1.0e-3\n  basis: quadratic\n  dilation: 2.0"));
+  EXPECT_NE(e.find("'discretization.dilation' = 2.0"), std::string::npos) << e;
+  EXPECT_NE(e.find("too small for the quadratic basis"), std::string::npos) << e;
+}
+
+TEST(Scene, BadChoiceAndUnit) {
+  EXPECT_NE(error_of(replace(kGood, "unit: mm", "unit: furlong")).find("'geometry.unit' = 'furlong' is not one of: m, mm"),
+            std::string::npos);
+}
+
+TEST(Scene, OverridesApplyAndAreValidated) {
+  const rk::Scene s = rk::load_scene(write_scene(kGood), {rk::parse_override("time.cfl=0.25")});
+  EXPECT_DOUBLE_EQ(s.time.cfl, 0.25);
+  EXPECT_NE(error_of(kGood, {rk::parse_override("time.cfl=-1")}).find("'time.cfl' = -1 is out of range"), std::string::npos);
+  EXPECT_NE(error_of(kGood, {rk::parse_override("discretization.spacing=2e-3")}, rk::Side::solve)
+                .find("used by rkprep; re-run rkprep"),
+            std::string::npos);
+  EXPECT_THROW(rk::parse_override("time.cfl"), rk::Error);
+}
+
+TEST(Scene, SyntaxErrorNamesTheLine) {
+  const auto e = error_of("geometry:\n  cad: [unclosed\n");
+  EXPECT_NE(e.find("YAML syntax error"), std::string::npos) << e;
+}
+
+}  // namespace
