@@ -210,6 +210,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                         {"point_updates_per_s", loop_s > 0 ? counts[1] * double(st.step) / loop_s : 0.0},
                         {"ns_per_point_update", st.step > 0 ? 1e9 * loop_s * comm.size() / (counts[1] * double(st.step)) : 0.0},
                         {"energy_error", last_error},
+                        {"initial_kinetic_energy", kinetic0},
                         {"frames", results->frames()},
                         {"peak_memory_mb_max_rank", mem[0]},
                         {"phases", phases}};

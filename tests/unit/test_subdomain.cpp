@@ -6,6 +6,8 @@
 #include <fstream>
 #include <iterator>
 
+#include <unistd.h>
+
 #include "error.hpp"
 #include "h5file.hpp"
 #include "subdomain.hpp"
@@ -39,7 +41,9 @@ rk::Subdomain sample() {
   return s;
 }
 
-std::string temp(const std::string& name) { return (fs::temp_directory_path() / ("rk_test_" + name)).string(); }
+std::string temp(const std::string& name) {
+  return (fs::temp_directory_path() / ("rk_test_" + std::to_string(::getpid()) + "_" + name)).string();
+}
 
 std::string error_of(const std::string& path, int rank, int ranks, const std::string& hash) {
   try {

@@ -1,0 +1,41 @@
+"""A missing, foreign (other scene) or wrong-rank-count subdomain file stops ALL ranks with one clear
+message and a non-zero exit, within seconds (no hang)."""
+import shutil
+import time
+
+import rkcase
+
+tools = rkcase.tools_from_argv()
+coarse = ["discretization.spacing=1.5e-3"]
+sets = ["time.end=1e-6"]
+
+
+def expect_failure(case, ranks, needle, what):
+    t0 = time.time()
+    p = tools.solve(case, ranks, sets=sets, expect_ok=False, timeout=60)
+    took = time.time() - t0
+    rkcase.check(p.returncode != 0, f"{what}: non-zero exit ({p.returncode})")
+    rkcase.check(needle in p.stderr, f"{what}: message names the problem: {p.stderr.strip().splitlines()[0]}")
+    rkcase.check(took < 30, f"{what}: stopped in {took:.1f} s")
+
+
+case = tools.case("bad_missing")
+tools.prep(case, 2, sets=coarse)
+(case / "sub" / "rank_0001.h5").unlink()
+expect_failure(case, 2, "rank_0001.h5: file not found", "missing rank file")
+
+case = tools.case("bad_foreign")
+other = tools.case("bad_other_scene")
+tools.prep(case, 2, sets=coarse)
+tools.prep(other, 2, sets=["discretization.spacing=1.4e-3"])
+shutil.copy(other / "sub" / "rank_0000.h5", case / "sub" / "rank_0000.h5")
+expect_failure(case, 2, "was prepared from another scene", "foreign subdomain file")
+
+case = tools.case("bad_count")
+tools.prep(case, 2, sets=coarse)
+expect_failure(case, 3, "prepared for 2 ranks but the job has 3", "wrong rank count")
+
+case = tools.case("bad_version")
+tools.prep(case, 1, sets=coarse)
+(case / "sub" / "rank_0000.h5").write_bytes(b"not hdf5 at all")
+expect_failure(case, 1, "not an HDF5 file", "garbage subdomain file")

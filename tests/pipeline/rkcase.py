@@ -1,0 +1,65 @@
+"""Shared helpers of the pipeline tests: run the three programs as a user would, read what rkpost wrote."""
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+TAYLOR = ROOT / "geometry" / "taylor_bar" / "scene.yaml"
+sys.path.insert(0, str(ROOT / "scripts"))
+
+MPI_ENV = {
+    "OMPI_ALLOW_RUN_AS_ROOT": "1",
+    "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+    "OMPI_MCA_rmaps_base_oversubscribe": "1",
+}
+
+
+class Tools:
+    def __init__(self, bin_dir, work_dir):
+        self.bin = Path(bin_dir)
+        self.work = Path(work_dir)
+        self.work.mkdir(parents=True, exist_ok=True)
+        self.env = dict(os.environ, **MPI_ENV)
+
+    def run(self, args, expect_ok=True, timeout=900):
+        p = subprocess.run([str(a) for a in args], capture_output=True, text=True, env=self.env, timeout=timeout)
+        if expect_ok and p.returncode != 0:
+            raise AssertionError(f"{' '.join(map(str, args))} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
+        return p
+
+    def case(self, name):
+        path = self.work / name
+        shutil.rmtree(path, ignore_errors=True)
+        return path
+
+    def prep(self, case, ranks=1, scene=TAYLOR, sets=(), **kw):
+        args = [self.bin / "rkprep", scene, "--ranks", ranks, "--out", case, "--quiet"]
+        for s in sets:
+            args += ["--set", s]
+        return self.run(args, **kw)
+
+    def solve(self, case, ranks=1, sets=(), **kw):
+        args = ["mpirun", "-np", ranks, self.bin / "rksolve", case, "--quiet"]
+        for s in sets:
+            args += ["--set", s]
+        return self.run(args, **kw)
+
+    def post(self, case, **kw):
+        return self.run([self.bin / "rkpost", case, "--quiet"], **kw)
+
+
+def tools_from_argv():
+    import argparse
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--bin", required=True)
+    ap.add_argument("--work", required=True)
+    a = ap.parse_args()
+    return Tools(a.bin, a.work)
+
+
+def check(condition, message):
+    if not condition:
+        raise AssertionError(message)
+    print("ok:", message)

@@ -1,0 +1,60 @@
+"""Taylor bar through all three programs, measured from the .vtu that rkpost wrote (meshio).
+
+--stage checkpoint: coarse bar to 12 us, impact-face radius 5.35-5.55 mm (converged codes 5.44-5.46).
+--stage full: the seed's resolution (1369 particles) to 80 us: r_f 6.86-7.36 mm, L_f 21.15-21.75 mm,
+energy error <= 1 % of KE0, kinetic energy left <= 6 % of KE0 (BENCHMARKS.md case 1).
+"""
+import argparse
+import csv
+import json
+import sys
+
+import meshio
+import numpy as np
+
+import rkcase
+from taylor_metrics import metrics
+
+ap = argparse.ArgumentParser()
+ap.add_argument("--bin", required=True)
+ap.add_argument("--work", required=True)
+ap.add_argument("--stage", choices=["checkpoint", "full"], required=True)
+ap.add_argument("--ranks", type=int, default=1)
+a = ap.parse_args()
+tools = rkcase.Tools(a.bin, a.work)
+case = tools.case(f"taylor_{a.stage}")
+
+if a.stage == "checkpoint":
+    tools.prep(case, a.ranks, sets=["discretization.spacing=0.6e-3"])
+    tools.solve(case, a.ranks, sets=["time.end=12e-6", "time.output_interval=6e-6"])
+else:
+    tools.prep(case, a.ranks)
+    tools.solve(case, a.ranks)
+tools.post(case)
+
+prep = json.loads((case / "prep.json").read_text())
+m = metrics(case)
+print(json.dumps(m, indent=2))
+vtu = meshio.read(sorted((case / "vtk").glob("frame_*.vtu"))[-1])
+rkcase.check(len(vtu.points) == prep["particles"], f"one point per particle ({prep['particles']})")
+for field in ("global_id", "displacement", "velocity", "eq_plastic_strain", "von_mises", "pressure", "rank"):
+    rkcase.check(field in vtu.point_data, f"point data '{field}' present")
+rkcase.check(np.array_equal(np.sort(vtu.point_data["global_id"].ravel()), np.arange(prep["particles"])), "every particle once")
+rkcase.check(m["finite"], "no NaN or Inf in the output")
+
+rows = list(csv.DictReader(open(case / "history.csv")))
+ke0 = json.loads((case / "solve.json").read_text())["initial_kinetic_energy"]
+err = max(float(r["energy_error"]) for r in rows)
+if a.stage == "checkpoint":
+    r = m["footprint_radius_mm"]
+    rkcase.check(abs(m["time_s"] - 12e-6) < 1e-12, "last frame at 12 us")
+    rkcase.check(5.35 <= r <= 5.55, f"impact-face radius at 12 us {r:.3f} mm in 5.35-5.55")
+else:
+    r, L = m["footprint_radius_mm"], m["final_length_mm"]
+    rkcase.check(prep["particles"] == 1369, "the seed's 1369 particles")
+    rkcase.check(abs(m["time_s"] - 80e-6) < 1e-12, "last frame at 80 us")
+    rkcase.check(6.86 <= r <= 7.36, f"footprint radius {r:.3f} mm in 6.86-7.36 (seed RKPM 7.30, FEM 7.38)")
+    rkcase.check(21.15 <= L <= 21.75, f"final length {L:.3f} mm in 21.15-21.75 (seed RKPM 21.48, FEM 21.46)")
+    ke_left = float(rows[-1]["kinetic"]) / ke0
+    rkcase.check(ke_left <= 0.06, f"kinetic energy left {100 * ke_left:.2f} % <= 6 % of KE0")
+rkcase.check(err <= 0.01, f"energy error {100 * err:.3f} % <= 1 % of KE0")
