@@ -4,6 +4,7 @@
 #   make demo   Taylor bar from CAD to VTK on 2 ranks, printing where the results are
 #   make test   build and run the whole test suite (ctest)
 SHELL := /bin/bash
+MAKEFLAGS += --no-print-directory
 BUILD ?= build
 JOBS  ?= $(shell nproc)
 RANKS ?= 2
@@ -11,7 +12,7 @@ DEMO  ?= $(BUILD)/demo/taylor_bar
 
 DEB_PACKAGES := build-essential cmake pkg-config libmetis-dev libsuitesparse-dev libeigen3-dev \
   libopenmpi-dev openmpi-bin libgmsh-dev libcgal-dev libhdf5-dev hdf5-tools libyaml-cpp-dev \
-  nlohmann-json3-dev libcli11-dev libgtest-dev python3-meshio python3-numpy
+  nlohmann-json3-dev libcli11-dev libgtest-dev python3-meshio python3-numpy python3-matplotlib
 
 export OMPI_ALLOW_RUN_AS_ROOT := 1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1

@@ -1,0 +1,55 @@
+#!/usr/bin/python3
+"""Plots of a Taylor bar case: impact-face radius and length against time (like the seed's Fig. 7,
+with the seed's final values marked) and the energy balance. Writes CASE/plots/*.png."""
+import csv
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from taylor_metrics import PUBLISHED, frames_of, metrics  # noqa: E402
+
+
+def main(case: Path) -> None:
+    out = case / "plots"
+    out.mkdir(exist_ok=True)
+    series = [metrics(case, k) for k in range(len(frames_of(case)))]
+    t = [1e6 * m["time_s"] for m in series]
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    for a, key, label in ((ax[0], "footprint_radius_mm", "impact-face radius (mm)"),
+                          (ax[1], "final_length_mm", "length (mm)")):
+        a.plot(t, [m[key] for m in series], "o-", label="rkforge")
+        a.plot([80], [PUBLISHED[key]["seed_rkpm"]], "s", label="seed RKPM (80 us)")
+        a.plot([80], [PUBLISHED[key]["seed_fem"]], "^", label="seed FEM, LS-DYNA (80 us)")
+        lo, hi = PUBLISHED[key]["band"]
+        a.axhspan(lo, hi, xmin=0.9, color="green", alpha=0.2, label="accept band")
+        a.set_xlabel("time (us)")
+        a.set_ylabel(label)
+        a.grid(True)
+        a.legend(fontsize=8)
+    fig.suptitle(f"Taylor bar, {series[-1]['particles']} particles")
+    fig.tight_layout()
+    fig.savefig(out / "taylor_radius_length.png", dpi=110)
+
+    rows = list(csv.DictReader(open(case / "history.csv")))
+    th = [1e6 * float(r["time"]) for r in rows]
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for key in ("kinetic", "internal", "plastic_work", "contact_work"):
+        ax.plot(th, [float(r[key]) for r in rows], label=key)
+    ax.set_xlabel("time (us)")
+    ax.set_ylabel("energy of the modeled part (J)")
+    ax2 = ax.twinx()
+    ax2.plot(th, [100 * float(r["energy_error"]) for r in rows], "k:", label="energy error (%)")
+    ax2.set_ylabel("energy error (%)")
+    ax.legend(loc="center right", fontsize=8)
+    ax.grid(True)
+    fig.tight_layout()
+    fig.savefig(out / "energies.png", dpi=110)
+
+
+if __name__ == "__main__":
+    main(Path(sys.argv[1]))
