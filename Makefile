@@ -3,6 +3,7 @@
 #   make build  configure and build (Release) into build/
 #   make demo   Taylor bar from CAD to VTK on 2 ranks, printing where the results are
 #   make test   build and run the whole test suite (ctest)
+#   make bench  strong scaling of a >= 100k-particle Taylor bar on 1 and 2 ranks (BENCH_ARGS=...)
 SHELL := /bin/bash
 MAKEFLAGS += --no-print-directory
 BUILD ?= build
@@ -18,7 +19,7 @@ export OMPI_ALLOW_RUN_AS_ROOT := 1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
 export OMPI_MCA_rmaps_base_oversubscribe := 1
 
-.PHONY: deps build demo test clean
+.PHONY: deps build demo test bench clean
 deps:
 	@missing=$$(for p in $(DEB_PACKAGES); do \
 	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
@@ -38,6 +39,9 @@ demo: build
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
+
+bench: build
+	@/usr/bin/python3 scripts/bench.py --bin $(BUILD)/bin --work $(BUILD)/bench $(BENCH_ARGS)
 
 clean:
 	rm -rf $(BUILD)

@@ -4,11 +4,12 @@
 
 namespace rk {
 
-void compute_internal_force(const Model& md, State& st, const FixedScale& scale) {
-  std::fill(st.partial.begin(), st.partial.end(), int128(0));
-  for (std::size_t g = 0; g < md.m; ++g) {
+void clear_internal_force(State& st) { std::fill(st.partial.begin(), st.partial.end(), int128(0)); }
+
+void add_internal_force(const Model& md, State& st, const FixedScale& scale, std::span<const std::int32_t> points) {
+  for (const std::int32_t g : points) {
     const double w = md.weight[g];
-    const double* P = &st.P[9 * g];
+    const double* P = &st.P[9 * std::size_t(g)];
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
       const double* d = &md.dN[3 * std::size_t(k)];
       int128* f = &st.partial[3 * std::size_t(md.nbr[k])];

@@ -1,12 +1,17 @@
 // Scatter: f^int_I = sum_g w_g P_g grad_X N_I(X_g) (seed eq. (19)) from this rank's own points,
 // accumulated in fixed point (fixed_point.hpp) so the result is independent of summation order.
+// The points are added in two groups so that the boundary points' partials can travel while the
+// interior points are computed.
 #pragma once
+#include <span>
+
 #include "fixed_point.hpp"
 #include "model.hpp"
 #include "state.hpp"
 
 namespace rk {
 
-void compute_internal_force(const Model& md, State& st, const FixedScale& scale);
+void clear_internal_force(State& st);
+void add_internal_force(const Model& md, State& st, const FixedScale& scale, std::span<const std::int32_t> points);
 
 }  // namespace rk

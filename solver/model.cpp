@@ -99,6 +99,14 @@ Model build_model(const Subdomain& sub, const Scene& scene) {
 
   md.neighbour_ranks = sub.neighbour_ranks;
   md.overlap = sub.overlap;
+  std::vector<std::uint8_t> shared(md.n, 0);
+  for (const auto& list : md.overlap)
+    for (auto I : list) shared[I] = 1;
+  for (std::size_t g = 0; g < md.m; ++g) {
+    bool touches = false;
+    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1] && !touches; ++k) touches = shared[md.nbr[k]];
+    (touches ? md.boundary_points : md.interior_points).push_back(std::int32_t(g));
+  }
 
   const auto& mat = scene.material;
   md.material = J2Params::from(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress, mat.hardening_modulus,

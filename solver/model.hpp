@@ -34,6 +34,10 @@ struct Model {
   std::size_t cells = 0;
   std::vector<std::int32_t> cell_points, cell_node_offsets, cell_nodes;
 
+  // points whose supports hold a shared particle (their forces are sent first) and the others,
+  // whose work overlaps the messages
+  std::vector<std::int32_t> boundary_points, interior_points;
+
   // overlap maps (seed Fig. 3)
   std::vector<std::int32_t> neighbour_ranks;
   std::vector<std::vector<std::int32_t>> overlap;

@@ -70,6 +70,11 @@ INSTANTIATE_TEST_SUITE_P(Ranks, Partition,
                          ::testing::Values(std::make_tuple(1, std::string("metis-kway")),
                                            std::make_tuple(3, std::string("metis-kway")),
                                            std::make_tuple(4, std::string("metis-recursive")),
-                                           std::make_tuple(7, std::string("metis-kway"))));
+                                           std::make_tuple(7, std::string("metis-kway"))),
+                         [](const auto& info) {
+                           std::string m = std::get<1>(info.param);
+                           m.erase(std::remove(m.begin(), m.end(), '-'), m.end());
+                           return std::to_string(std::get<0>(info.param)) + "ranks_" + m;
+                         });
 
 }  // namespace

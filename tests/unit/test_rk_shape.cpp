@@ -78,7 +78,12 @@ TEST_P(Reproducing, PolynomialsAndGradientsToRoundOff) {
 INSTANTIATE_TEST_SUITE_P(Clouds, Reproducing,
                          ::testing::Values(Case{0.0, 1.5, rk::Basis::linear}, Case{0.0, 2.0, rk::Basis::linear},
                                            Case{0.2, 1.5, rk::Basis::linear}, Case{0.2, 2.0, rk::Basis::linear},
-                                           Case{0.0, 2.5, rk::Basis::quadratic}, Case{0.2, 2.5, rk::Basis::quadratic}));
+                                           Case{0.0, 2.5, rk::Basis::quadratic}, Case{0.2, 2.5, rk::Basis::quadratic}),
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                           const Case& c = info.param;
+                           return std::string(c.basis == rk::Basis::linear ? "linear" : "quadratic") + "_jitter" +
+                                  std::to_string(int(100 * c.jitter)) + "_dilation" + std::to_string(int(10 * c.dilation));
+                         });
 
 TEST(RkShape, TooFewNeighboursIsReportedSingular) {
   Cloud c = lattice(4, 1.0, 0.0, 0.9);  // support smaller than the spacing: one particle per point
