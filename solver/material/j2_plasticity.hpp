@@ -1,19 +1,32 @@
 // Finite-strain J2 plasticity, logarithmic elastic strain, radial return in Kirchhoff stress
 // (Simo 1992; de Souza Neto, Peric & Owen, Computational Methods for Plasticity, box 14.3).
 // The plastic state is C_p^{-1} (so b_e^trial = F C_p^{-1} F^T depends on F only: objective by
-// construction) and the equivalent plastic strain ep. Linear isotropic hardening
-// sigma_y = sigma_y0 + H ep; `plastic = false` gives the Hencky hyperelastic special case.
+// construction) and the equivalent plastic strain ep. Isotropic hardening, linear
+// sigma_y = sigma_y0 + H ep or power law sigma_y = K (eps0 + ep)^n (seed Table 4);
+// `plastic = false` gives the Hencky hyperelastic special case.
 #pragma once
 #include <Eigen/Dense>
+#include <cmath>
 
 namespace rk {
 
 struct J2Params {
   double bulk = 0, shear = 0;              // K, G (Pa)
-  double yield0 = 0, hardening = 0;        // sigma_y0, H (Pa)
+  double yield0 = 0, hardening = 0;        // linear: sigma_y0, H (Pa)
   bool plastic = true;
+  bool power_law = false;                  // power law: sigma_y = K (eps0 + ep)^n
+  double strength = 0, eps0 = 0, exponent = 0;
   static J2Params from(double E, double nu, double yield0, double H, bool plastic) {
     return {E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu)), yield0, H, plastic};
+  }
+  static J2Params power(double E, double nu, double K, double eps0, double n) {
+    J2Params p = from(E, nu, K * std::pow(eps0, n), 0, true);
+    p.power_law = true, p.strength = K, p.eps0 = eps0, p.exponent = n;
+    return p;
+  }
+  double yield(double ep) const { return power_law ? strength * std::pow(eps0 + ep, exponent) : yield0 + hardening * ep; }
+  double slope(double ep) const {
+    return power_law ? exponent * strength * std::pow(eps0 + ep, exponent - 1) : hardening;
   }
 };
 

@@ -98,3 +98,18 @@ TEST(J2, ElasticModelNeverYields) {
 }
 
 }  // namespace
+
+TEST(J2, PowerLawHardeningFollowsTheCurve) {
+  // seed Table 4 aluminium: sigma = 576.79 (0.01658 + ep)^0.3593 MPa, initial yield 132.2 MPa
+  const rk::J2Params al = rk::J2Params::power(71e9, 0.3, 576.79e6, 0.01658, 0.3593);
+  EXPECT_NEAR(al.yield(0), 132.2e6, 0.05e6);
+  double cp[6] = {1, 1, 1, 0, 0, 0}, ep = 0;
+  for (int k = 1; k <= 40; ++k) {  // isochoric extension: plastic strain grows, q stays on the curve
+    const double e = 0.01 * k;
+    Eigen::Matrix3d F = Eigen::Vector3d(std::exp(e), std::exp(-e / 2), std::exp(-e / 2)).asDiagonal();
+    const rk::J2Update up = rk::j2_update(F, al, cp, ep);
+    EXPECT_NEAR(von_mises(up.tau), al.yield(ep), 1e-9 * al.yield(ep)) << "step " << k;
+  }
+  // isochoric path: equivalent strain 0.4 = ep + q / (3G)
+  EXPECT_NEAR(ep, 0.4 - al.yield(ep) / (3 * al.shear), 1e-9);
+}
