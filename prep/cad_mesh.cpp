@@ -8,38 +8,17 @@
 #include <unordered_map>
 
 #include "error.hpp"
+#include "gmsh_session.hpp"
 
 namespace rk {
-namespace {
-
-struct GmshSession {  // gmsh is a process-wide singleton: initialize once per mesh_cad call
-  explicit GmshSession(double h) {
-    std::string hs = std::to_string(h);
-    std::vector<std::string> args{"rkprep", "-setnumber", "h", hs};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    gmsh::initialize(int(argv.size()), argv.data(), false);
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 2);
-    gmsh::logger::start();
-  }
-  // gmsh's own error lines, for messages when it failed without throwing.
-  static std::string errors() {
-    std::vector<std::string> log;
-    gmsh::logger::get(log);
-    std::string out;
-    for (auto& l : log)
-      if (l.rfind("Error", 0) == 0) out += (out.empty() ? "" : "; ") + l;
-    return out;
-  }
-  ~GmshSession() { gmsh::finalize(); }
-};
 
 std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
+
+namespace {
 
 VolumeMesh mesh_with_gmsh(const MeshRequest& r) {
   const std::string ext = lower_extension(r.cad);

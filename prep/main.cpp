@@ -7,6 +7,7 @@
 
 #include "cad_mesh.hpp"
 #include "cli.hpp"
+#include "die_surface.hpp"
 #include "discretize.hpp"
 #include "partition.hpp"
 #include "scene.hpp"
@@ -79,9 +80,17 @@ int run(int argc, char** argv) {
   });
   const rk::Discretization disc =
       timer.run("discretize", [&] { return rk::discretize(mesh, scene.discretization.gauss_order); });
+  const auto dies = timer.run("dies", [&] {
+    std::vector<rk::DieSurface> out;
+    for (const auto& die : scene.dies) {
+      out.push_back(rk::mesh_die(die, scene.discretization.spacing));
+      rk::check_workpiece_outside(out.back(), die, mesh, scene.discretization.spacing);
+    }
+    return out;
+  });
   const auto cell_rank = timer.run("partition", [&] { return rk::partition_cells(mesh, disc, ranks, partitioner); });
   const auto subs = timer.run("subdomains", [&] {
-    return rk::build_subdomains({mesh, disc, cell_rank, ranks, scene.discretization.dilation, scene.prep_hash});
+    return rk::build_subdomains({mesh, disc, cell_rank, ranks, scene.discretization.dilation, scene.prep_hash, dies});
   });
   const auto report = rk::partition_report(subs, mesh.node_count());
   timer.run("write", [&] {

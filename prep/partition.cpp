@@ -83,6 +83,7 @@ std::vector<Subdomain> build_subdomains(const SubdomainRequest& r) {
     s.rank = q;
     s.ranks = r.ranks;
     s.scene_hash = r.scene_hash;
+    s.dies = r.dies;
     for (std::size_t k = 0; k < local[q].size(); ++k) {
       const auto I = local[q][k];
       local_index[I] = std::int32_t(k);

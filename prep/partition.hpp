@@ -24,6 +24,7 @@ struct SubdomainRequest {
   int ranks;
   double dilation;
   std::string scene_hash;
+  const std::vector<DieSurface>& dies;
 };
 
 std::vector<Subdomain> build_subdomains(const SubdomainRequest& request);

@@ -125,6 +125,7 @@ class Section {
   }
 
   void record(const std::string& key, const std::string& value) { resolved_[key] = value; }
+  void record_node(const std::string& key, const YAML::Node& value) { resolved_[key] = value; }
 
   Section section(const std::string& key, bool required = false) {
     YAML::Node v = get(key, required);
@@ -225,7 +226,8 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<Override>&
   }
   if (!root.IsMap()) throw Error(name + ": the scene must be a YAML map of sections");
   for (const auto& o : overrides) {
-    const bool prep_key = o.path.rfind("geometry.", 0) == 0 || o.path.rfind("discretization.", 0) == 0;
+    const bool prep_key = o.path.rfind("geometry.", 0) == 0 || o.path.rfind("discretization.", 0) == 0 ||
+                          o.path.rfind("dies", 0) == 0;
     if (side == Side::solve && prep_key)
       throw Error("--set " + o.path + ": this key is used by rkprep; re-run rkprep with it");
     apply_override(root, o, name);
@@ -265,8 +267,9 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<Override>&
   {
     Section m = top.section("material", true);
     auto& o = s.material;
-    std::string model = m.text("model", std::nullopt, {"elastic", "j2_linear"});
-    o.model = model == "elastic" ? MaterialModel::elastic : MaterialModel::j2_linear;
+    std::string model = m.text("model", std::nullopt, {"elastic", "j2_linear", "j2_power"});
+    o.model = model == "elastic" ? MaterialModel::elastic
+              : model == "j2_power" ? MaterialModel::j2_power : MaterialModel::j2_linear;
     o.density = m.number("density", std::nullopt, {0, 1e6, true, false});
     o.youngs_modulus = m.number("youngs_modulus", std::nullopt, {0, 1e13, true, false});
     o.poisson_ratio = m.number("poisson_ratio", std::nullopt, {-1, 0.5, true, true});
@@ -274,12 +277,23 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<Override>&
       o.yield_stress = m.number("yield_stress", std::nullopt, {0, 1e12, true, false});
       o.hardening_modulus = m.number("hardening_modulus", 0.0, {0, 1e13});
     }
+    if (o.model == MaterialModel::j2_power) {
+      o.strength = m.number("strength", std::nullopt, {0, 1e12, true, false});
+      o.reference_strain = m.number("reference_strain", std::nullopt, {0, 10, true, false});
+      o.exponent = m.number("exponent", std::nullopt, {0, 1});
+      o.yield_stress = o.strength * std::pow(o.reference_strain, o.exponent);
+    }
     m.done();
   }
   {
     Section ic = top.section("initial_conditions");
     s.initial.velocity = ic.vec3("velocity", Vec3{0, 0, 0});
     ic.done();
+  }
+  {
+    Section l = top.section("loads");
+    s.loads.gravity = l.vec3("gravity", Vec3{0, 0, 0});
+    l.done();
   }
   {
     Section b = top.section("boundaries");
@@ -295,11 +309,76 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<Override>&
     });
     b.done();
   }
+  std::vector<SymmetryPlane> planes = s.symmetry_planes;
+  top.list("dies", [&](Section& d) {
+    Die die;
+    die.name = d.text("name", std::nullopt);
+    std::filesystem::path p(d.text("cad", std::nullopt));
+    die.cad = (p.is_absolute() ? p : (s.dir / p)).lexically_normal().string();
+    d.record("cad", die.cad);
+    die.unit = unit_length(d.text("unit", "m", {"m", "mm", "cm", "in"}));
+    die.friction = d.number("friction", 0.0, {0, 10});
+    Section m = d.section("motion", true);
+    die.motion.direction = m.vec3("direction", std::nullopt, true);
+    YAML::Node curve = m.get("curve", false);
+    if (curve && !curve.IsNull()) {
+      std::vector<double> flat;
+      if (!curve.IsSequence()) throw Error(where(name, curve, m.key_path("curve")) + ": must be a list of [time, stroke]");
+      YAML::Node out(YAML::NodeType::Sequence);
+      for (std::size_t i = 0; i < curve.size(); ++i) {
+        const YAML::Node pt = curve[i];
+        if (!pt.IsSequence() || pt.size() != 2)
+          throw Error(where(name, pt, m.key_path("curve")) + ": key '" + m.key_path("curve") + "' entry " +
+                      std::to_string(i) + " must be [time, stroke]");
+        double t = 0, x = 0;
+        try {
+          t = pt[0].as<double>(), x = pt[1].as<double>();
+        } catch (const YAML::Exception&) {
+          throw Error(where(name, pt, m.key_path("curve")) + ": key '" + m.key_path("curve") + "' entry " +
+                      std::to_string(i) + " must hold numbers");
+        }
+        if (!die.motion.curve.empty() && !(t > die.motion.curve.back().first))
+          throw Error(where(name, pt, m.key_path("curve")) + ": key '" + m.key_path("curve") +
+                      "' times must increase");
+        die.motion.curve.emplace_back(t, x);
+        YAML::Node o(YAML::NodeType::Sequence);
+        o.push_back(t), o.push_back(x);
+        o.SetStyle(YAML::EmitterStyle::Flow);
+        out.push_back(o);
+      }
+      m.record_node("curve", out);
+      die.motion.speed = m.number("speed", 0.0, {0, 0});
+    } else {
+      die.motion.speed = m.number("speed", std::nullopt, {0, 1e4});
+    }
+    m.done();
+    // Full part / modeled part: each symmetry plane whose normal is normal to the motion mirrors the
+    // die force; two orthogonal such planes make a quarter (x4). Other sectors must say it.
+    std::vector<Vec3> mirror;
+    for (const auto& pl : planes)
+      if (std::abs(dot(pl.normal, die.motion.direction)) < 1e-9) mirror.push_back(pl.normal);
+    double factor = mirror.size() == 0 ? 1 : mirror.size() == 1 ? 2 : 0;
+    if (mirror.size() == 2 && std::abs(dot(mirror[0], mirror[1])) < 1e-9) factor = 4;
+    YAML::Node given = d.get("force_factor", false);
+    if (given && !given.IsNull()) factor = d.number("force_factor", std::nullopt, {1, 1e6});
+    else if (factor == 0)
+      throw Error(where(name, d.get("name", false), "dies") + ": die '" + die.name +
+                  "': the symmetry planes make a sector; give dies[].force_factor (full part / modeled part)");
+    else d.number("force_factor", factor, {1, 1e6});
+    die.force_factor = factor;
+    s.dies.push_back(die);
+  });
+  {
+    Section c = top.section("contact");
+    s.contact.penalty_scale = c.number("penalty_scale", s.contact.penalty_scale, {0, 1, true, false});
+    c.done();
+  }
   {
     Section t = top.section("time", true);
     s.time.end = t.number("end", std::nullopt, {0, 1e6, true, false});
     s.time.cfl = t.number("cfl", s.time.cfl, {0, 2, true, false});
     s.time.output_interval = t.number("output_interval", s.time.end / 10, {0, 1e6, true, false});
+    s.time.mass_scaling_dt = t.number("mass_scaling_dt", 0.0, {0, 1});
     t.done();
   }
   {
@@ -314,8 +393,33 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<Override>&
   s.resolved_yaml = std::string(all.c_str()) + "\n";
   YAML::Emitter prep;
   prep << resolved["geometry"] << resolved["discretization"];
+  for (const auto& d : s.dies) prep << d.name << d.cad << d.unit;
   s.prep_hash = fnv1a_hex(prep.c_str());
   return s;
+}
+
+}  // namespace rk
+
+namespace rk {
+
+double DieMotion::stroke(double t) const {
+  if (curve.empty()) return speed * t;
+  if (t <= curve.front().first) return curve.front().second;
+  for (std::size_t k = 1; k < curve.size(); ++k)
+    if (t <= curve[k].first) {
+      const auto [t0, s0] = curve[k - 1];
+      const auto [t1, s1] = curve[k];
+      return s0 + (s1 - s0) * (t - t0) / (t1 - t0);
+    }
+  return curve.back().second;
+}
+
+double DieMotion::rate(double t) const {
+  if (curve.empty()) return speed;
+  for (std::size_t k = 1; k < curve.size(); ++k)
+    if (t < curve[k].first && t >= curve[k - 1].first)
+      return (curve[k].second - curve[k - 1].second) / (curve[k].first - curve[k - 1].first);
+  return 0.0;
 }
 
 }  // namespace rk

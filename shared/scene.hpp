@@ -21,7 +21,25 @@ struct RigidWall {
   Vec3 normal{};  // unit, pointing into the workpiece side
 };
 
-enum class MaterialModel { elastic, j2_linear };
+// A rigid die: its CAD surface becomes triangles (outward normals), moved by a prescribed motion.
+struct DieMotion {
+  Vec3 direction{};                               // unit: the pressing direction (stroke is along it)
+  double speed = 0;                               // m/s, constant (when `curve` is empty)
+  std::vector<std::pair<double, double>> curve;   // (time s, stroke m), piecewise linear
+  double stroke(double t) const;                  // m along `direction`
+  double rate(double t) const;                    // d stroke / dt
+};
+
+struct Die {
+  std::string name;
+  std::string cad;      // absolute path
+  double unit = 1.0;    // metres per CAD unit
+  DieMotion motion;
+  double friction = 0;  // Coulomb coefficient
+  double force_factor = 1;  // full part / modeled part (symmetry)
+};
+
+enum class MaterialModel { elastic, j2_linear, j2_power };
 
 struct Material {
   MaterialModel model = MaterialModel::j2_linear;
@@ -30,6 +48,7 @@ struct Material {
   double poisson_ratio = 0;      // -
   double yield_stress = 0;       // Pa (initial)
   double hardening_modulus = 0;  // Pa (linear isotropic)
+  double strength = 0, reference_strain = 0, exponent = 0;  // power law K (eps0 + ep)^n
 };
 
 struct Scene {
@@ -57,13 +76,23 @@ struct Scene {
     Vec3 velocity{};          // m/s, uniform
   } initial;
 
+  struct Loads {
+    Vec3 gravity{};           // m/s^2, body force per unit mass
+  } loads;
+
   std::vector<SymmetryPlane> symmetry_planes;
   std::vector<RigidWall> rigid_walls;
+  std::vector<Die> dies;
+
+  struct Contact {
+    double penalty_scale = 0.25;  // k_I = scale * m_I / dt^2 (< 1: contact never limits the step)
+  } contact;
 
   struct Time {
     double end = 0;                // s
     double cfl = 0.5;              // fraction of the stable step
     double output_interval = 0;    // s
+    double mass_scaling_dt = 0;    // s; > 0: density scaled so that the stable step is at least this
   } time;
 
   struct Health {

@@ -39,6 +39,13 @@ void write_subdomain(const std::string& path, const Subdomain& s) {
     std::snprintf(name, sizeof name, "overlap/rank_%04d", s.neighbour_ranks[k]);
     f.write(name, s.overlap[k]);
   }
+  f.set_attr("die_count", std::int64_t(s.dies.size()));
+  for (std::size_t k = 0; k < s.dies.size(); ++k) {
+    char name[40];
+    std::snprintf(name, sizeof name, "dies/%04zu/", k);
+    f.write(std::string(name) + "vertices", s.dies[k].vertices, 3);
+    f.write(std::string(name) + "triangles", s.dies[k].triangles, 3);
+  }
 }
 
 namespace {
@@ -82,6 +89,16 @@ Subdomain read_subdomain(const std::string& path, int rank, int ranks, const std
     char name[40];
     std::snprintf(name, sizeof name, "overlap/rank_%04d", q);
     s.overlap.push_back(f.read<std::int32_t>(name));
+  }
+
+  const auto die_count = f.attr_int("die_count");
+  for (std::int64_t k = 0; k < die_count; ++k) {
+    char name[40];
+    std::snprintf(name, sizeof name, "dies/%04lld/", static_cast<long long>(k));
+    DieSurface d{f.read<double>(std::string(name) + "vertices", 3), f.read<std::int32_t>(std::string(name) + "triangles", 3)};
+    for (auto v : d.triangles)
+      require(v >= 0 && std::size_t(v) < d.vertices.size() / 3, path, "die " + std::to_string(k) + " has a bad triangle");
+    s.dies.push_back(std::move(d));
   }
 
   const std::size_t n = s.global_id.size(), c = s.cell_global_id.size(), m = s.point_weight.size();

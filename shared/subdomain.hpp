@@ -6,6 +6,8 @@
 //   points/{X[m,3], weight, cell}                                    their integration points
 //   overlap/ranks, overlap/rank_NNNN                                 per neighbour: shared local
 //                                                                    particle indices, ascending global id
+//   dies/NNNN/{vertices[v,3], triangles[t,3]}  (attr die_count)      rigid die surfaces, outward
+//                                                                    normals (every rank holds all)
 #pragma once
 #include <cstdint>
 #include <string>
@@ -13,9 +15,14 @@
 
 namespace rk {
 
-inline constexpr std::int64_t kFormatVersion = 1;
+inline constexpr std::int64_t kFormatVersion = 2;
 
 enum ParticleFlag : std::uint8_t { kSurface = 1 };
+
+struct DieSurface {
+  std::vector<double> vertices;        // 3 per vertex, m, reference (t = 0) position
+  std::vector<std::int32_t> triangles; // 3 vertex indices each, counter-clockwise seen from outside
+};
 
 struct Subdomain {
   std::int64_t rank = 0, ranks = 1;
@@ -42,6 +49,8 @@ struct Subdomain {
   // Overlap maps: for neighbour_ranks[k], the shared particles' local indices (ascending global id).
   std::vector<std::int32_t> neighbour_ranks;
   std::vector<std::vector<std::int32_t>> overlap;
+
+  std::vector<DieSurface> dies;  // in the scene's order
 
   std::size_t particle_count() const { return global_id.size(); }
   std::size_t cell_count() const { return cell_global_id.size(); }

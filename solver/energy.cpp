@@ -25,7 +25,7 @@ Energies compute_energies(const Model& md, const State& st, const std::vector<do
 }
 
 double energy_error(const Energies& e, double kinetic0) {
-  const double scale = std::max(kinetic0, std::abs(e.external));
+  const double scale = std::max({kinetic0, std::abs(e.external), std::abs(e.contact)});
   if (!(scale > 0)) return 0.0;
   return std::abs(e.kinetic + e.internal - kinetic0 - e.external - e.contact) / scale;
 }

@@ -16,7 +16,7 @@ struct Energies {
 // Whole-model totals at time t^n; kinetic energy from vbar = (v^{n-1/2} + v^{n+1/2}) / 2.
 Energies compute_energies(const Model& md, const State& st, const std::vector<double>& v_old, const Comm& comm);
 
-// |E(t) - E(0) - W_ext - W_contact| / max(KE0, |W_ext|).
+// |E(t) - E(0) - W_ext - W_contact| / max(KE0, |W_ext|, |W_contact|): the energy put in sets the scale.
 double energy_error(const Energies& e, double kinetic0);
 
 }  // namespace rk

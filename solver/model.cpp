@@ -97,6 +97,7 @@ Model build_model(const Subdomain& sub, const Scene& scene) {
   for (std::size_t c = 0; c < md.cells; ++c) md.cell_points[c + 1] += md.cell_points[c];
   build_shape_functions(md, sub, scene);
 
+  md.dies = sub.dies;
   md.neighbour_ranks = sub.neighbour_ranks;
   md.overlap = sub.overlap;
   std::vector<std::uint8_t> shared(md.n, 0);
@@ -109,11 +110,23 @@ Model build_model(const Subdomain& sub, const Scene& scene) {
   }
 
   const auto& mat = scene.material;
-  md.material = J2Params::from(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress, mat.hardening_modulus,
-                               mat.model == MaterialModel::j2_linear);
+  md.material = mat.model == MaterialModel::j2_power
+                    ? J2Params::power(mat.youngs_modulus, mat.poisson_ratio, mat.strength, mat.reference_strain, mat.exponent)
+                    : J2Params::from(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress, mat.hardening_modulus,
+                                     mat.model == MaterialModel::j2_linear);
   md.wave_modulus = md.material.bulk + 4.0 / 3.0 * md.material.shear;
   md.fbar = scene.discretization.volumetric == "fbar";
   return md;
+}
+
+}  // namespace rk
+
+namespace rk {
+
+void scale_mass(Model& md, double factor) {
+  md.mass_scaling *= factor;
+  md.density *= factor;
+  for (auto& m : md.mass) m *= factor;
 }
 
 }  // namespace rk

@@ -42,8 +42,11 @@ struct Model {
   std::vector<std::int32_t> neighbour_ranks;
   std::vector<std::vector<std::int32_t>> overlap;
 
+  std::vector<DieSurface> dies;  // rigid die surfaces at t = 0
+
   J2Params material;
-  double density = 0;
+  double density = 0;       // kg/m^3, times the mass-scaling factor
+  double mass_scaling = 1;  // density factor applied to reach time.mass_scaling_dt
   double wave_modulus = 0;  // K + 4G/3, for the dilatational wave speed
   bool fbar = true;
 };
@@ -51,5 +54,8 @@ struct Model {
 // Builds the model from this rank's subdomain: neighbour search and shape functions at the points.
 // Throws rk::Error naming the point if a moment matrix is singular.
 Model build_model(const Subdomain& sub, const Scene& scene);
+
+// Quasi-static forming in explicit time: multiplies the density (masses and wave speed) by `factor`.
+void scale_mass(Model& md, double factor);
 
 }  // namespace rk

@@ -96,11 +96,10 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
   f.set_attr("frames", std::int64_t(++frames_));
 }
 
-HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::string>& wall_names) {
+HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::string>& columns) {
   file_ = std::fopen(path.c_str(), "w");
   if (!file_) throw Error(path + ": cannot write the history file");
-  std::fprintf(file_, "time,dt,kinetic,internal,plastic_work,external_work,contact_work,energy_error,contacts");
-  for (const auto& w : wall_names) std::fprintf(file_, ",%s.force", w.c_str());
+  for (std::size_t k = 0; k < columns.size(); ++k) std::fprintf(file_, "%s%s", k ? "," : "", columns[k].c_str());
   std::fprintf(file_, "\n");
 }
 
@@ -108,10 +107,8 @@ HistoryWriter::~HistoryWriter() {
   if (file_) std::fclose(file_);
 }
 
-void HistoryWriter::write(const HistoryRow& r) {
-  std::fprintf(file_, "%.9e,%.6e,%.9e,%.9e,%.9e,%.9e,%.9e,%.6e,%lld", r.time, r.dt, r.e.kinetic, r.e.internal,
-               r.e.plastic, r.e.external, r.e.contact, r.energy_error, static_cast<long long>(r.contacts));
-  for (double f : r.wall_force) std::fprintf(file_, ",%.9e", f);
+void HistoryWriter::write(const std::vector<double>& values) {
+  for (std::size_t k = 0; k < values.size(); ++k) std::fprintf(file_, "%s%.10g", k ? "," : "", values[k]);
   std::fprintf(file_, "\n");
   std::fflush(file_);
 }

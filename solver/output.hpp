@@ -29,19 +29,11 @@ class ResultWriter {
   std::vector<int128> partial_;
 };
 
-struct HistoryRow {
-  double time, dt;
-  Energies e;
-  double energy_error;
-  std::int64_t contacts;
-  std::vector<double> wall_force;  // per rigid wall, N, on the modeled part along its normal
-};
-
-class HistoryWriter {  // rank 0 only
+class HistoryWriter {  // rank 0 only: one header row, then one row of numbers per call
  public:
-  HistoryWriter(const std::string& path, const std::vector<std::string>& wall_names);
+  HistoryWriter(const std::string& path, const std::vector<std::string>& columns);
   ~HistoryWriter();
-  void write(const HistoryRow& row);
+  void write(const std::vector<double>& values);
 
  private:
   std::FILE* file_ = nullptr;

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "boundary/symmetry.hpp"
+#include "contact/die_contact.hpp"
 #include "contact/rigid_wall.hpp"
 #include "energy.hpp"
 #include "error.hpp"
@@ -56,41 +57,65 @@ std::string describe_point(const Model& md, const State& st, std::size_t g) {
   return s.str();
 }
 
+
+std::vector<std::string> history_columns(const Scene& scene) {
+  std::vector<std::string> c{"time",         "dt",          "kinetic",      "internal",      "plastic_work",
+                             "external_work", "contact_work", "energy_error", "friction_work", "contacts",
+                             "max_penetration", "kinetic_internal_ratio"};
+  for (const auto& w : scene.rigid_walls) c.push_back(w.name + ".force");
+  for (const auto& d : scene.dies)
+    for (const char* q : {".stroke", ".force", ".fx", ".fy", ".fz", ".work"}) c.push_back(d.name + q);
+  return c;
+}
+
 }  // namespace
 
 void solve_case(const SolveOptions& opt, const Comm& comm) {
   const double wall0 = comm.wtime();
   const Scene scene = collectively(
       comm, [&] { return load_scene(opt.case_dir + "/scene.resolved.yaml", opt.overrides, Side::solve); });
-  const Model md = collectively(comm, [&] {
+  Model md = collectively(comm, [&] {
     return build_model(read_subdomain(subdomain_path(opt.case_dir, comm.rank()), comm.rank(), comm.size(),
                                       scene.prep_hash),
                        scene);
   });
+  comm.check(md.dies.size() == scene.dies.size(), "the subdomain files hold " + std::to_string(md.dies.size()) +
+                                                      " dies but the scene declares " + std::to_string(scene.dies.size()) +
+                                                      "; re-run rkprep");
   auto results = collectively(comm, [&] { return std::make_unique<ResultWriter>(opt.case_dir, md); });
   std::unique_ptr<HistoryWriter> history;
-  std::vector<std::string> wall_names;
-  for (const auto& w : scene.rigid_walls) wall_names.push_back(w.name);
-  if (comm.rank() == 0) history = std::make_unique<HistoryWriter>(opt.case_dir + "/history.csv", wall_names);
+  const std::vector<std::string> columns = history_columns(scene);
+  if (comm.rank() == 0) history = std::make_unique<HistoryWriter>(opt.case_dir + "/history.csv", columns);
 
   State st = State::initial(md, scene.initial.velocity.data());
   apply_symmetry(md, st);
+  compute_deformation_gradient(md, st);
+  double dt0 = stable_time_step(md, st, scene.time.cfl);
+  comm.min(&dt0, 1);
+  if (scene.time.mass_scaling_dt > dt0) {  // quasi-static forming: scale the density up
+    const double factor = std::pow(scene.time.mass_scaling_dt / dt0, 2);
+    scale_mass(md, factor);
+    dt0 *= std::sqrt(factor);
+  }
+  const bool has_gravity = norm(scene.loads.gravity) > 0;
+  double dt_stable = dt0;  // the last unclipped global stable step: sets the penalty stiffness
+  DieContact dies(md, scene, md.dies);
   OverlapExchange exchange(md, 3);
   std::vector<double> v_old(st.v.size());
-  HistoryRow row{};
-  row.wall_force.assign(scene.rigid_walls.size(), 0.0);
-  std::vector<double> wall_force(scene.rigid_walls.size(), 0.0);
+  std::vector<double> row(columns.size(), 0.0), wall_force(scene.rigid_walls.size(), 0.0);
+  std::vector<double> sums(4 + 5 * scene.dies.size() + scene.rigid_walls.size());
 
   const double t_end = scene.time.end, out_dt = scene.time.output_interval;
   const double hist_dt = t_end / 500;
   double next_output = 0, next_history = 0;
   const double kinetic0 = compute_energies(md, st, st.v, comm).kinetic;
-  double last_error = 0;
+  double last_error = 0, max_ke_ratio = 0;
   PhaseTimer timer;
   const double setup_s = comm.wtime() - wall0;
   double last_progress = comm.wtime();
   if (!opt.quiet && comm.rank() == 0)
-    std::printf("rksolve: %d ranks, setup %.2f s, running to t = %g s\n", comm.size(), setup_s, t_end);
+    std::printf("rksolve: %d ranks, setup %.2f s, mass scaling %.3g, running to t = %g s\n", comm.size(), setup_s,
+                md.mass_scaling, t_end);
 
   for (;;) {
     timer.start();
@@ -98,8 +123,10 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     timer.stop(kDeformation);
     const StressHealth health = update_stress(md, st);
     timer.stop(kStress);
+    const double contact_bound = dies.compute(md, st, st.t, dt_stable);
+    timer.stop(kUpdate);
 
-    double bound = 0;
+    double bound = contact_bound;
     for (std::size_t g = 0; g < md.m; ++g) bound = std::max(bound, st.force_bound[g]);
     const bool healthy = health.ok && std::isfinite(bound);
     double red[3] = {-stable_time_step(md, st, scene.time.cfl), bound, healthy ? 0.0 : 1.0};
@@ -118,6 +145,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
 
     const bool last = st.t >= t_end * (1 - 1e-12);
     double dt = -red[0];
+    dt_stable = dt;
     if (!last) {
       dt = std::min(dt, t_end - st.t);
       if (next_output - st.t > 1e-9 * out_dt) dt = std::min(dt, next_output - st.t);
@@ -126,6 +154,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     const FixedScale scale = FixedScale::for_bound(red[1]);
     clear_internal_force(st);
     add_internal_force(md, st, scale, md.boundary_points);
+    dies.add_to(st, scale);  // contact forces of the owned particles, once over all ranks
     timer.stop(kInternalForce);
     exchange.start(st.partial);  // the overlap particles' partials travel ...
     timer.stop(kExchange);
@@ -135,10 +164,11 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     timer.stop(kExchange);
 
     std::copy(st.v.begin(), st.v.end(), v_old.begin());
+    const double* g = scene.loads.gravity.data();
     for (std::size_t I = 0; I < md.n; ++I)
       for (int i = 0; i < 3; ++i) {
         st.force[3 * I + i] = scale.real(st.partial[3 * I + i]);
-        st.v[3 * I + i] -= dt_avg * st.force[3 * I + i] / md.mass[I];
+        st.v[3 * I + i] += dt_avg * (g[i] - st.force[3 * I + i] / md.mass[I]);
       }
     apply_symmetry(md, st);
     std::int64_t contacts = 0;
@@ -148,21 +178,59 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       wall_force[w] = r.normal_force;
       contacts += r.contacts;
     }
+    dies.account(md, st, v_old, dt_avg, st.t);
+    if (has_gravity)  // work of the body force on the owned particles
+      for (std::size_t I = 0; I < md.n; ++I)
+        if (md.owned[I])
+          for (int i = 0; i < 3; ++i) st.external_work += dt_avg * md.mass[I] * g[i] * 0.5 * (v_old[3 * I + i] + st.v[3 * I + i]);
     timer.stop(kUpdate);
 
     if (last || st.t >= next_history - 1e-9 * hist_dt) {  // history row at t^n
-      row.e = compute_energies(md, st, v_old, comm);
-      double counts[1 + 8] = {double(contacts)};
-      for (std::size_t w = 0; w < wall_force.size() && w < 8; ++w) counts[1 + w] = wall_force[w];
-      comm.sum(counts, 1 + int(std::min<std::size_t>(wall_force.size(), 8)));
-      row.time = st.t;
-      row.dt = dt;
-      row.energy_error = last_error = energy_error(row.e, kinetic0);
-      row.contacts = std::int64_t(counts[0]);
-      for (std::size_t w = 0; w < row.wall_force.size() && w < 8; ++w) row.wall_force[w] = counts[1 + w];
+      Energies e = compute_energies(md, st, v_old, comm);
+      std::size_t k = 0;
+      sums[k++] = double(contacts);
+      double friction = 0, die_work = 0;
+      for (const auto& d : dies.totals()) {
+        sums[k++] = double(d.contacts), friction += d.friction_work, die_work += d.contact_work;
+        for (double f : d.force) sums[k++] = f;
+        sums[k++] = d.press_work;
+      }
+      double springs = 0;
+      for (const auto& d : dies.totals()) springs += d.spring_energy;
+      sums[k++] = springs, sums[k++] = friction, sums[k++] = die_work;
+      for (double f : wall_force) sums[k++] = f;
+      comm.sum(sums.data(), int(k));
+      double pen = 0;
+      for (const auto& d : dies.totals()) pen = std::max(pen, d.max_penetration);
+      comm.max(&pen, 1);
+      e.contact += sums[k - 1 - wall_force.size()];
+      e.internal += sums[k - 3 - wall_force.size()];  // penalty springs store energy like the material
+      last_error = energy_error(e, kinetic0);
+      const double ratio = e.internal > 0 ? e.kinetic / e.internal : 0.0;
+      if (st.t > 0.05 * t_end) max_ke_ratio = std::max(max_ke_ratio, ratio);
+      std::size_t c = 0, j = 0;
+      double die_contacts = 0;
+      for (std::size_t d = 0; d < dies.size(); ++d) die_contacts += sums[1 + 5 * d];
+      for (double v : {st.t, dt, e.kinetic, e.internal, e.plastic, e.external, e.contact, last_error,
+                       sums[k - 2 - wall_force.size()], sums[0] + die_contacts, pen, ratio})
+        row[c++] = v;
+      for (std::size_t w = 0; w < wall_force.size(); ++w) row[c++] = sums[k - wall_force.size() + w];
+      j = 1;
+      for (std::size_t d = 0; d < dies.size(); ++d) {
+        const Die& die = dies.die(d);
+        const double f[3] = {sums[j + 1], sums[j + 2], sums[j + 3]};
+        row[c++] = die.motion.stroke(st.t);
+        row[c++] = die.force_factor * (f[0] * die.motion.direction[0] + f[1] * die.motion.direction[1] +
+                                       f[2] * die.motion.direction[2]);
+        row[c++] = f[0], row[c++] = f[1], row[c++] = f[2];
+        row[c++] = sums[j + 4];
+        j += 5;
+      }
       if (history) history->write(row);
       next_history += hist_dt;
-      if (last_error > scene.health.max_energy_error) {
+      // Runaway check; skipped in the first 10 % of the run, where the energies are still tiny and the
+      // first-order work of freshly engaged contacts dominates their ratio.
+      if (last_error > scene.health.max_energy_error && st.t > 0.1 * t_end) {
         results->write_frame(md, st, st.v, comm);
         std::ostringstream why;
         why << "energy error " << last_error << " exceeds health.max_energy_error = " << scene.health.max_energy_error
@@ -216,6 +284,8 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                         {"ns_per_point_update", st.step > 0 ? 1e9 * loop_s * comm.size() / (counts[1] * double(st.step)) : 0.0},
                         {"energy_error", last_error},
                         {"initial_kinetic_energy", kinetic0},
+                        {"mass_scaling", md.mass_scaling},
+                        {"max_kinetic_internal_ratio", max_ke_ratio},
                         {"frames", results->frames()},
                         {"peak_memory_mb_max_rank", mem[0]},
                         {"phases", phases}};

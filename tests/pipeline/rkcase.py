@@ -7,7 +7,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 TAYLOR = ROOT / "geometry" / "taylor_bar" / "scene.yaml"
-sys.path.insert(0, str(ROOT / "scripts"))
+sys.path.insert(0, str(ROOT / "scripts"))  # taylor_metrics, upsetting_check
 
 MPI_ENV = {
     "OMPI_ALLOW_RUN_AS_ROOT": "1",

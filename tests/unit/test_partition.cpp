@@ -23,7 +23,7 @@ TEST_P(Partition, Invariants) {
       rk::mesh_cad({std::string(RK_SOURCE_DIR) + "/geometry/taylor_bar/taylor_bar.geo", 1e-3, 1.2e-3});
   const rk::Discretization disc = rk::discretize(mesh, 2);
   const auto cell_rank = rk::partition_cells(mesh, disc, ranks, method);
-  const auto subs = rk::build_subdomains({mesh, disc, cell_rank, ranks, dilation, "hash"});
+  const auto subs = rk::build_subdomains({mesh, disc, cell_rank, ranks, dilation, "hash", {}});
   ASSERT_EQ(int(subs.size()), ranks);
 
   std::vector<int> cell_count(mesh.cell_count(), 0);

@@ -1,0 +1,63 @@
+#!/usr/bin/python3
+"""Frictionless upsetting against the closed form (BENCHMARKS.md case 2).
+
+F = sigma(ep) A0 H0 / H with ep = ln(H0/H) - sigma/E (aluminium, seed Table 4), D = D0 sqrt(H0/H).
+Reads CASE/history.csv (die force, full part) and the last .vtu (diameter, via meshio).
+  upsetting_check.py CASE [--json]
+"""
+import csv
+import json
+import math
+import sys
+from pathlib import Path
+
+import meshio
+import numpy as np
+
+E, K, EPS0, N = 71e9, 576.79e6, 0.01658, 0.3593
+D0 = H0 = 20e-3
+
+
+def exact_force(reduction):
+    H = H0 * (1 - reduction)
+    sigma = 300e6
+    for _ in range(200):
+        sigma = K * (EPS0 + math.log(H0 / H) - sigma / E) ** N
+    return sigma * math.pi * D0 ** 2 / 4 * H0 / H
+
+
+def check(case: Path):
+    rows = list(csv.DictReader(open(case / "history.csv")))
+    half = H0 / 2  # one eighth is modeled: the die stroke is half the height reduction
+    out = {"force": []}
+    max_reduction = float(rows[-1]["die.stroke"]) / half
+    for red in (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7):
+        if red > max_reduction + 1e-9:
+            break
+        r = min(rows, key=lambda r: abs(float(r["die.stroke"]) - red * half))
+        f = float(r["die.force"])
+        out["force"].append({"reduction": red, "force_kN": f / 1e3, "exact_kN": exact_force(red) / 1e3,
+                             "error": f / exact_force(red) - 1})
+    vtu = sorted((case / "vtk").glob("frame_*.vtu"))[-1]
+    x = meshio.read(vtu).points
+    height = 2 * x[:, 2].max()
+    diameter = 2 * np.hypot(x[:, 0], x[:, 1]).max()
+    out["diameter_mm"] = 1e3 * diameter
+    out["diameter_exact_mm"] = 1e3 * D0 * math.sqrt(H0 / height)
+    out["diameter_error"] = diameter / (D0 * math.sqrt(H0 / height)) - 1
+    out["max_energy_error"] = max(float(r["energy_error"]) for r in rows)
+    out["max_kinetic_internal_ratio"] = max(float(r["kinetic_internal_ratio"]) for r in rows[len(rows) // 10:])
+    return out
+
+
+if __name__ == "__main__":
+    res = check(Path(sys.argv[1]))
+    if "--json" in sys.argv:
+        print(json.dumps(res, indent=2))
+    else:
+        print("reduction  force (kN)  exact (kN)  error")
+        for f in res["force"]:
+            print(f"  {100 * f['reduction']:3.0f} %   {f['force_kN']:9.2f}  {f['exact_kN']:9.2f}  {100 * f['error']:+6.2f} %")
+        print(f"diameter {res['diameter_mm']:.3f} mm, exact {res['diameter_exact_mm']:.3f} mm "
+              f"({100 * res['diameter_error']:+.2f} %); energy error {100 * res['max_energy_error']:.2f} %, "
+              f"max kinetic/internal {100 * res['max_kinetic_internal_ratio']:.2f} %")

@@ -1,0 +1,85 @@
+#include "contact/die_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rk {
+
+DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<DieSurface>& surfaces)
+    : dies_(scene.dies), surfaces_(surfaces), totals_(scene.dies.size()), penalty_scale_(scene.contact.penalty_scale) {
+  double hmax = 0;
+  for (std::size_t I = 0; I < md.n; ++I)
+    if (md.surface[I] && md.owned[I]) slaves_.push_back(std::int32_t(I)), hmax = std::max(hmax, md.spacing[I]);
+  for (const auto& s : surfaces_) search_.push_back(std::make_unique<DieSearch>(s, hmax));
+  scratch_.reserve(4096);
+  active_.reserve(slaves_.size() * std::max<std::size_t>(1, dies_.size()));
+}
+
+double DieContact::compute(const Model& md, const State& st, double t, double dt) {
+  active_.clear();
+  double largest = 0;
+  for (std::size_t k = 0; k < dies_.size(); ++k) {
+    const DieMotion& mo = dies_[k].motion;
+    const double stroke = mo.stroke(t), rate = mo.rate(t);
+    DieTotals& tot = totals_[k];
+    tot.force[0] = tot.force[1] = tot.force[2] = 0;
+    tot.max_penetration = 0;
+    tot.spring_energy = 0;
+    tot.contacts = 0;
+    for (const auto I : slaves_) {
+      double x[3];
+      for (int i = 0; i < 3; ++i) x[i] = md.X[3 * I + i] + st.u[3 * I + i] - stroke * mo.direction[i];
+      const DieHit hit = search_[k]->nearest(x, scratch_);
+      if (!hit.found || hit.gap >= 0) continue;
+      const double depth = -hit.gap;
+      const double kI = penalty_scale_ * md.mass[I] / (dt * dt);
+      Active a{I, std::int32_t(k), {}, {}};
+      double vt[3], vn = 0;
+      for (int i = 0; i < 3; ++i) {
+        a.normal_force[i] = kI * depth * hit.normal[i];
+        vt[i] = st.v[3 * I + i] - rate * mo.direction[i];
+        vn += vt[i] * hit.normal[i];
+      }
+      for (int i = 0; i < 3; ++i) vt[i] -= vn * hit.normal[i];
+      const double fn = kI * depth, vt_norm = std::sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
+      const double mu = dies_[k].friction;
+      if (mu > 0 && vt_norm > 0) {
+        const double stick = md.mass[I] * vt_norm / dt;  // stops the sliding in one step
+        const double f = std::min(stick, mu * fn);
+        for (int i = 0; i < 3; ++i) a.friction_force[i] = -f * vt[i] / vt_norm;
+      }
+      for (int i = 0; i < 3; ++i) {
+        tot.force[i] += a.normal_force[i] + a.friction_force[i];
+        largest = std::max(largest, std::abs(a.normal_force[i] + a.friction_force[i]));
+      }
+      tot.max_penetration = std::max(tot.max_penetration, depth);
+      tot.spring_energy += 0.5 * kI * depth * depth;
+      ++tot.contacts;
+      active_.push_back(a);
+    }
+  }
+  return largest;
+}
+
+void DieContact::add_to(State& st, const FixedScale& scale) const {
+  for (const auto& a : active_)
+    for (int i = 0; i < 3; ++i) st.partial[3 * std::size_t(a.particle) + i] -= scale.fixed(a.normal_force[i] + a.friction_force[i]);
+}
+
+void DieContact::account(const Model& md, const State& st, const std::vector<double>& v_old, double dt_avg, double t) {
+  (void)md;
+  for (const auto& a : active_) {
+    const DieMotion& mo = dies_[a.die].motion;
+    const double rate = mo.rate(t);
+    DieTotals& tot = totals_[a.die];
+    for (int i = 0; i < 3; ++i) {
+      const double vbar = 0.5 * (v_old[3 * a.particle + i] + st.v[3 * a.particle + i]);
+      const double f = a.normal_force[i] + a.friction_force[i];
+      tot.contact_work += dt_avg * f * vbar;
+      tot.press_work += dt_avg * f * rate * mo.direction[i];
+      tot.friction_work -= dt_avg * a.friction_force[i] * (vbar - rate * mo.direction[i]);
+    }
+  }
+}
+
+}  // namespace rk

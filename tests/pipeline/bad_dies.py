@@ -1,0 +1,28 @@
+"""Bad die input is one clear error naming the die, with a non-zero exit: a missing die CAD file, a
+die that is not a closed solid, and a workpiece that starts inside a die."""
+import rkcase
+
+tools = rkcase.tools_from_argv()
+src = rkcase.ROOT / "geometry" / "upsetting"
+w = tools.work
+
+
+def scene_with_die(name, die_text):
+    (w / f"{name}.geo").write_text(die_text) if die_text else None
+    text = (src / "scene.yaml").read_text().replace("cad: billet.geo", f"cad: {src / 'billet.geo'}")
+    text = text.replace("cad: die.geo", f"cad: {w / (name + '.geo')}")
+    path = w / f"{name}.yaml"
+    path.write_text(text)
+    return path
+
+
+def expect(scene, needle, what):
+    p = tools.prep(tools.case("bad_die_case"), 1, scene=scene, sets=["discretization.spacing=2.5e-3"], expect_ok=False)
+    rkcase.check(p.returncode != 0 and needle in p.stderr, f"{what}: {p.stderr.strip()}")
+
+
+expect(scene_with_die("missing", None), "die 'die': ", "missing die CAD")
+expect(scene_with_die("sunk", 'SetFactory("OpenCASCADE");\nBox(1) = {-2, -2, 9, 20, 20, 3};\n'),
+       "the workpiece starts inside the die", "workpiece inside the die")
+expect(scene_with_die("open", 'SetFactory("OpenCASCADE");\nRectangle(1) = {-2, -2, 10, 20, 20};\n'),
+       "no closed solid", "die that is only a surface")
