@@ -40,7 +40,7 @@ Soup gmsh_boundary(const Die& die, double spacing) {
   } else {
     throw Error("die '" + die.name + "': " + die.cad + ": unsupported CAD format '" + ext + "'");
   }
-  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 16);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 64);  // chord sagitta 0.12 % of the radius
   gmsh::vectorpair volumes, surfaces;
   gmsh::model::getEntities(volumes, 3);
   if (volumes.empty())
@@ -114,7 +114,7 @@ void check_workpiece_outside(const DieSurface& surface, const Die& die, const Vo
   std::vector<std::int32_t> scratch;
   for (std::size_t i = 0; i < workpiece.node_count(); ++i) {
     const DieHit hit = search.nearest(&workpiece.X[3 * i], scratch);
-    if (hit.found && hit.gap < -1e-3 * spacing) {
+    if (hit.found && hit.gap < -0.05 * spacing) {  // touching within the die facets' chord error is fine
       std::ostringstream s;
       s << "die '" << die.name << "' (" << die.cad << "): the workpiece starts inside the die: particle " << i
         << " at (" << workpiece.X[3 * i] << ", " << workpiece.X[3 * i + 1] << ", " << workpiece.X[3 * i + 2]

@@ -57,6 +57,10 @@ bool H5File::exists(const std::string& name) const {
   return H5Lexists(file_, name.c_str(), H5P_DEFAULT) > 0;
 }
 
+void H5File::remove(const std::string& name) {
+  if (exists(name) && H5Ldelete(file_, name.c_str(), H5P_DEFAULT) < 0) throw Error(path_ + ": cannot remove '" + name + "'");
+}
+
 void H5File::write_raw(const std::string& name, hid_t type, const void* data, std::size_t rows,
                        std::size_t cols) {
   hsize_t dims[2] = {rows, cols};

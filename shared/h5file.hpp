@@ -25,6 +25,7 @@ class H5File {
   template <class T>
   std::vector<T> read(const std::string& name, std::size_t cols = 1) const;
   bool exists(const std::string& name) const;
+  void remove(const std::string& name);  // unlinks a dataset or group if present
 
   void set_attr(const std::string& name, std::int64_t value);
   void set_attr(const std::string& name, double value);

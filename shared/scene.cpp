@@ -382,8 +382,14 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<Override>&
     t.done();
   }
   {
+    Section o = top.section("output");
+    s.output.checkpoint_steps = o.integer("checkpoint_steps", int(s.output.checkpoint_steps), 0, 1000000000);
+    o.done();
+  }
+  {
     Section h = top.section("health");
     s.health.max_energy_error = h.number("max_energy_error", s.health.max_energy_error, {0, 1e3, true, false});
+    s.health.min_dt_ratio = h.number("min_dt_ratio", s.health.min_dt_ratio, {0, 1});
     h.done();
   }
   top.done();

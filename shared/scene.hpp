@@ -95,8 +95,13 @@ struct Scene {
     double mass_scaling_dt = 0;    // s; > 0: density scaled so that the stable step is at least this
   } time;
 
+  struct Output {
+    std::int64_t checkpoint_steps = 5000;  // steps between checkpoints (0: only at the end)
+  } output;
+
   struct Health {
     double max_energy_error = 0.05;  // fraction of the energy scale; past it the run stops
+    double min_dt_ratio = 1e-3;      // stable step / initial step below which the run stops
   } health;
 
   std::string resolved_yaml;     // the deck with every default filled in

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   app.add_option("case", options.case_dir, "case directory written by rkprep")->required();
   app.add_option("--set", sets, "override a solver-side scene key: key.path=value (repeatable)");
   app.add_flag("--quiet", options.quiet, "print nothing but errors");
+  app.add_flag("--restart", options.restart, "continue from the newest checkpoint in CASE/checkpoint");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 #include "error.hpp"
 #include "h5file.hpp"
@@ -25,12 +26,23 @@ void cauchy_measures(const double* tau, double J, double& von_mises, double& pre
 
 }  // namespace
 
-ResultWriter::ResultWriter(const std::string& case_dir, const Model& md)
+ResultWriter::ResultWriter(const std::string& case_dir, const Model& md, std::int64_t resume_frames)
     : exchange_(md, kProjected), partial_(kProjected * md.n) {
   std::filesystem::create_directories(case_dir + "/results");
   char name[32];
   std::snprintf(name, sizeof name, "/results/rank_%04d.h5", md.rank);
   path_ = case_dir + name;
+  if (resume_frames >= 0) {
+    H5File f(path_, H5File::Mode::append);
+    for (std::int64_t k = resume_frames; k < f.attr_int("frames") + 1; ++k) {
+      char group[32];
+      std::snprintf(group, sizeof group, "frames/%05lld", static_cast<long long>(k));
+      f.remove(group);
+    }
+    f.set_attr("frames", resume_frames);
+    frames_ = int(resume_frames);
+    return;
+  }
   H5File f(path_, H5File::Mode::create);
   f.set_attr("rank", std::int64_t(md.rank));
   f.set_attr("ranks", std::int64_t(md.ranks));
@@ -96,11 +108,20 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
   f.set_attr("frames", std::int64_t(++frames_));
 }
 
-HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::string>& columns) {
+HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::string>& columns, double resume_time) {
+  std::vector<std::string> keep;
+  if (resume_time >= 0) {  // rows before the checkpoint survive a restart
+    std::ifstream in(path);
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line))
+      if (std::strtod(line.c_str(), nullptr) < resume_time) keep.push_back(line);
+  }
   file_ = std::fopen(path.c_str(), "w");
   if (!file_) throw Error(path + ": cannot write the history file");
   for (std::size_t k = 0; k < columns.size(); ++k) std::fprintf(file_, "%s%s", k ? "," : "", columns[k].c_str());
   std::fprintf(file_, "\n");
+  for (const auto& line : keep) std::fprintf(file_, "%s\n", line.c_str());
 }
 
 HistoryWriter::~HistoryWriter() {

@@ -17,7 +17,9 @@ namespace rk {
 // von_mises, pressure}; root attribute `frames` = number of complete frames.
 class ResultWriter {
  public:
-  ResultWriter(const std::string& case_dir, const Model& md);
+  // resume_frames < 0: a new file; otherwise continue the existing one after its first resume_frames
+  // frames (a restart drops the frames written after its checkpoint).
+  ResultWriter(const std::string& case_dir, const Model& md, std::int64_t resume_frames = -1);
   // Collective (the particle values of point quantities need the overlap exchange).
   void write_frame(const Model& md, const State& st, const std::vector<double>& velocity, const Comm& comm);
   int frames() const { return frames_; }
@@ -31,7 +33,8 @@ class ResultWriter {
 
 class HistoryWriter {  // rank 0 only: one header row, then one row of numbers per call
  public:
-  HistoryWriter(const std::string& path, const std::vector<std::string>& columns);
+  // resume_time >= 0: keep the existing rows before that time (restart), else start a new file.
+  HistoryWriter(const std::string& path, const std::vector<std::string>& columns, double resume_time = -1);
   ~HistoryWriter();
   void write(const std::vector<double>& values);
 

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "boundary/symmetry.hpp"
+#include "checkpoint.hpp"
 #include "contact/die_contact.hpp"
 #include "contact/rigid_wall.hpp"
 #include "energy.hpp"
@@ -82,15 +83,10 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   comm.check(md.dies.size() == scene.dies.size(), "the subdomain files hold " + std::to_string(md.dies.size()) +
                                                       " dies but the scene declares " + std::to_string(scene.dies.size()) +
                                                       "; re-run rkprep");
-  auto results = collectively(comm, [&] { return std::make_unique<ResultWriter>(opt.case_dir, md); });
-  std::unique_ptr<HistoryWriter> history;
-  const std::vector<std::string> columns = history_columns(scene);
-  if (comm.rank() == 0) history = std::make_unique<HistoryWriter>(opt.case_dir + "/history.csv", columns);
-
   State st = State::initial(md, scene.initial.velocity.data());
   apply_symmetry(md, st);
   compute_deformation_gradient(md, st);
-  double dt0 = stable_time_step(md, st, scene.time.cfl);
+  double dt0 = stable_time_step(md, st, scene.time.cfl).dt;
   comm.min(&dt0, 1);
   if (scene.time.mass_scaling_dt > dt0) {  // quasi-static forming: scale the density up
     const double factor = std::pow(scene.time.mass_scaling_dt / dt0, 2);
@@ -98,8 +94,20 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     dt0 *= std::sqrt(factor);
   }
   const bool has_gravity = norm(scene.loads.gravity) > 0;
-  double dt_stable = dt0;  // the last unclipped global stable step: sets the penalty stiffness
   DieContact dies(md, scene, md.dies);
+  RunClock clock;
+  clock.dt_stable = dt0;  // the last unclipped global stable step: sets the penalty stiffness
+  clock.kinetic0 = compute_energies(md, st, st.v, comm).kinetic;
+  if (opt.restart)
+    collectively(comm, [&] { return read_checkpoint(opt.case_dir, md, st, clock, dies.totals()), 0; });
+  auto results = collectively(comm, [&] {
+    return std::make_unique<ResultWriter>(opt.case_dir, md, opt.restart ? clock.frames : -1);
+  });
+  std::unique_ptr<HistoryWriter> history;
+  const std::vector<std::string> columns = history_columns(scene);
+  if (comm.rank() == 0)
+    history = std::make_unique<HistoryWriter>(opt.case_dir + "/history.csv", columns, opt.restart ? st.t : -1.0);
+  const std::int64_t first_step = st.step;
   OverlapExchange exchange(md, 3);
   std::vector<double> v_old(st.v.size());
   std::vector<double> row(columns.size(), 0.0), wall_force(scene.rigid_walls.size(), 0.0);
@@ -107,9 +115,12 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
 
   const double t_end = scene.time.end, out_dt = scene.time.output_interval;
   const double hist_dt = t_end / 500;
-  double next_output = 0, next_history = 0;
-  const double kinetic0 = compute_energies(md, st, st.v, comm).kinetic;
-  double last_error = 0, max_ke_ratio = 0;
+  double& next_output = clock.next_output;
+  double& next_history = clock.next_history;
+  double& dt_stable = clock.dt_stable;
+  double& last_error = clock.last_error;
+  double& max_ke_ratio = clock.max_ke_ratio;
+  const double kinetic0 = clock.kinetic0;
   PhaseTimer timer;
   const double setup_s = comm.wtime() - wall0;
   double last_progress = comm.wtime();
@@ -119,6 +130,13 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
 
   for (;;) {
     timer.start();
+    const bool last = st.t >= t_end * (1 - 1e-12);
+    const auto every = scene.output.checkpoint_steps;
+    if ((every > 0 && st.step % every == 0 && st.step > first_step) || last) {  // state at t^n, v^{n-1/2}
+      clock.frames = results->frames();
+      collectively(comm, [&] { return write_checkpoint(opt.case_dir, md, st, clock, dies.totals()), 0; });
+      timer.stop(kOutput);
+    }
     compute_deformation_gradient(md, st);
     timer.stop(kDeformation);
     const StressHealth health = update_stress(md, st);
@@ -129,9 +147,20 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     double bound = contact_bound;
     for (std::size_t g = 0; g < md.m; ++g) bound = std::max(bound, st.force_bound[g]);
     const bool healthy = health.ok && std::isfinite(bound);
-    double red[3] = {-stable_time_step(md, st, scene.time.cfl), bound, healthy ? 0.0 : 1.0};
+    const StableStep stable = stable_time_step(md, st, scene.time.cfl);
+    double red[3] = {-stable.dt, bound, healthy ? 0.0 : 1.0};
     comm.max(red, 3);
     timer.stop(kTimeStep);
+    if (-red[0] < scene.health.min_dt_ratio * dt0) {  // a cell has collapsed: the run would never end
+      results->write_frame(md, st, st.v, comm);
+      const std::int32_t I = md.cell_nodes[md.cell_node_offsets[stable.cell]];
+      std::ostringstream why;
+      why << "the stable time step collapsed to " << stable.dt << " s (" << stable.dt / dt0
+          << " of the initial step) at step " << st.step << ", t = " << st.t << " s, in the cell of particle "
+          << md.global_id[I] << " at (" << md.X[3 * I] + st.u[3 * I] << ", " << md.X[3 * I + 1] + st.u[3 * I + 1] << ", "
+          << md.X[3 * I + 2] + st.u[3 * I + 2] << ") m (last frame written); refine the spacing there";
+      comm.check(stable.dt > -red[0], why.str());
+    }
     if (red[2] > 0) {  // a rank is unhealthy: show the user the state, then stop every rank
       std::ostringstream why;
       if (!health.ok)
@@ -143,7 +172,6 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       comm.check(healthy, why.str() + " (last frame written)");
     }
 
-    const bool last = st.t >= t_end * (1 - 1e-12);
     double dt = -red[0];
     dt_stable = dt;
     if (!last) {

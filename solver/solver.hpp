@@ -12,6 +12,7 @@ struct SolveOptions {
   std::string case_dir;
   std::vector<Override> overrides;
   bool quiet = false;
+  bool restart = false;  // continue from CASE/checkpoint (time.end may be extended with --set)
 };
 
 void solve_case(const SolveOptions& options, const Comm& comm);

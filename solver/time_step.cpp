@@ -10,8 +10,9 @@ constexpr int kHexEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}
 constexpr int kTetEdges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
 }  // namespace
 
-double stable_time_step(const Model& md, const State& st, double cfl) {
+StableStep stable_time_step(const Model& md, const State& st, double cfl) {
   double dt = std::numeric_limits<double>::infinity();
+  std::size_t which = 0;
   for (std::size_t c = 0; c < md.cells; ++c) {
     const std::int32_t* nodes = &md.cell_nodes[md.cell_node_offsets[c]];
     const bool hex = md.cell_node_offsets[c + 1] - md.cell_node_offsets[c] == 8;
@@ -27,9 +28,10 @@ double stable_time_step(const Model& md, const State& st, double cfl) {
       l2 = std::min(l2, d2);
     }
     const double c2 = md.wave_modulus * std::max(st.cell_J[c], 1e-12) / md.density;
-    dt = std::min(dt, std::sqrt(l2 / c2));
+    const double dtc = std::sqrt(l2 / c2);
+    if (dtc < dt) dt = dtc, which = c;
   }
-  return cfl * dt;
+  return {cfl * dt, which};
 }
 
 }  // namespace rk

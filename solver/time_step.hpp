@@ -7,6 +7,11 @@
 
 namespace rk {
 
-double stable_time_step(const Model& md, const State& st, double cfl);
+struct StableStep {
+  double dt;
+  std::size_t cell;  // the cell that sets it
+};
+
+StableStep stable_time_step(const Model& md, const State& st, double cfl);
 
 }  // namespace rk

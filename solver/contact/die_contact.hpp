@@ -39,6 +39,7 @@ class DieContact {
   void account(const Model& md, const State& st, const std::vector<double>& v_old, double dt_avg, double t);
 
   const std::vector<DieTotals>& totals() const { return totals_; }
+  std::vector<DieTotals>& totals() { return totals_; }  // restored from a checkpoint
   const Die& die(std::size_t k) const { return dies_[k]; }
   std::size_t size() const { return dies_.size(); }
 

@@ -1,0 +1,79 @@
+#include "checkpoint.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "error.hpp"
+#include "h5file.hpp"
+
+namespace rk {
+namespace {
+
+void fsync_path(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd >= 0) ::fsync(fd), ::close(fd);
+}
+
+}  // namespace
+
+std::string checkpoint_path(const std::string& case_dir, int rank) {
+  char name[40];
+  std::snprintf(name, sizeof name, "/checkpoint/rank_%04d.h5", rank);
+  return case_dir + name;
+}
+
+void write_checkpoint(const std::string& case_dir, const Model& md, const State& st, const RunClock& c,
+                      const std::vector<DieTotals>& dies) {
+  const std::string path = checkpoint_path(case_dir, md.rank), tmp = path + ".tmp";
+  std::filesystem::create_directories(case_dir + "/checkpoint");
+  {
+    H5File f(tmp, H5File::Mode::create);
+    f.set_attr("rank", std::int64_t(md.rank));
+    f.set_attr("particles", std::int64_t(md.n));
+    f.set_attr("points", std::int64_t(md.m));
+    f.write("clock/scalars", std::vector<double>{st.t, st.dt_half, st.contact_work, st.external_work, c.next_output,
+                                                 c.next_history, c.dt_stable, c.kinetic0, c.last_error, c.max_ke_ratio});
+    f.write("clock/integers", std::vector<std::int64_t>{st.step, c.frames, std::int64_t(dies.size())});
+    std::vector<double> die_work;
+    for (const auto& d : dies) die_work.insert(die_work.end(), {d.press_work, d.friction_work, d.contact_work});
+    f.write("dies/work", die_work, 3);
+    f.write("particles/u", st.u, 3);
+    f.write("particles/v", st.v, 3);
+    f.write("points/cp_inv", st.cp_inv, 6);
+    f.write("points/ep", st.ep);
+    f.write("points/wp", st.wp);
+  }
+  fsync_path(tmp);
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw Error(path + ": cannot replace the checkpoint");
+  fsync_path(case_dir + "/checkpoint");
+}
+
+void read_checkpoint(const std::string& case_dir, const Model& md, State& st, RunClock& c, std::vector<DieTotals>& dies) {
+  const std::string path = checkpoint_path(case_dir, md.rank);
+  H5File f(path, H5File::Mode::read);
+  if (f.attr_int("particles") != std::int64_t(md.n) || f.attr_int("points") != std::int64_t(md.m))
+    throw Error(path + ": the checkpoint does not match this case's subdomain (re-run from the start)");
+  const auto s = f.read<double>("clock/scalars");
+  const auto i = f.read<std::int64_t>("clock/integers");
+  if (s.size() != 10 || i.size() != 3 || i[2] != std::int64_t(dies.size()))
+    throw Error(path + ": the checkpoint's run clock or die count does not match");
+  st.t = s[0], st.dt_half = s[1], st.contact_work = s[2], st.external_work = s[3];
+  c.next_output = s[4], c.next_history = s[5], c.dt_stable = s[6], c.kinetic0 = s[7], c.last_error = s[8],
+  c.max_ke_ratio = s[9];
+  st.step = i[0], c.frames = i[1];
+  const auto work = f.read<double>("dies/work", 3);
+  for (std::size_t k = 0; k < dies.size(); ++k)
+    dies[k].press_work = work[3 * k], dies[k].friction_work = work[3 * k + 1], dies[k].contact_work = work[3 * k + 2];
+  st.u = f.read<double>("particles/u", 3);
+  st.v = f.read<double>("particles/v", 3);
+  st.cp_inv = f.read<double>("points/cp_inv", 6);
+  st.ep = f.read<double>("points/ep");
+  st.wp = f.read<double>("points/wp");
+  if (st.u.size() != 3 * md.n || st.v.size() != 3 * md.n || st.ep.size() != md.m)
+    throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
+}
+
+}  // namespace rk

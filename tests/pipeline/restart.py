@@ -1,0 +1,73 @@
+"""Checkpoint and restart lose nothing (issue 8): (1) a run stopped at 4 us and restarted to 8 us
+ends bitwise equal to the uninterrupted run, frames and all; (2) a rank killed with SIGKILL mid-run
+stops the whole job quickly, leaves the last good checkpoint, and the restart from it ends bitwise
+equal to the uninterrupted run."""
+import os
+import shutil
+import signal
+import subprocess
+import time
+
+import meshio
+import numpy as np
+
+import rkcase
+
+tools = rkcase.tools_from_argv()
+prep = tools.case("restart_prep")
+tools.prep(prep, 2, sets=["discretization.spacing=1.2e-3"])
+
+
+def copy(name):
+    dst = tools.case(name)
+    shutil.copytree(prep, dst)
+    return dst
+
+
+def final(case):
+    tools.post(case)
+    frames = sorted((case / "vtk").glob("frame_*.vtu"))
+    m = meshio.read(frames[-1])
+    order = np.argsort(m.point_data["global_id"].ravel())
+    return len(frames), m.points[order], m.point_data["velocity"][order], m.point_data["eq_plastic_strain"][order]
+
+
+def same(a, b):
+    return a[0] == b[0] and all(np.array_equal(x, y) for x, y in zip(a[1:], b[1:]))
+
+
+out = ["time.output_interval=2e-6"]
+whole = copy("restart_whole")
+tools.solve(whole, 2, sets=["time.end=8e-6"] + out)
+split = copy("restart_split")
+tools.solve(split, 2, sets=["time.end=4e-6"] + out)
+tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", split, "--quiet", "--restart", "--set", "time.end=8e-6",
+               "--set", "time.output_interval=2e-6"])
+rkcase.check(same(final(whole), final(split)), "stopped at 4 us and restarted to 8 us: bitwise equal, same frames")
+
+long = ["time.end=16e-6", "time.output_interval=4e-6", "output.checkpoint_steps=50"]
+whole = copy("kill_whole")
+tools.solve(whole, 2, sets=long)
+killed = copy("kill_killed")
+args = ["mpirun", "-np", "2", str(tools.bin / "rksolve"), str(killed), "--quiet"]
+for s in long:
+    args += ["--set", s]
+job = subprocess.Popen(args, env=tools.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+ckpt = killed / "checkpoint" / "rank_0001.h5"
+deadline = time.time() + 120
+while not ckpt.exists() and time.time() < deadline and job.poll() is None:
+    time.sleep(0.05)
+time.sleep(0.3)
+pids = subprocess.run(["pgrep", "-f", f"rksolve {killed}"], capture_output=True, text=True).stdout.split()
+rkcase.check(job.poll() is None and len(pids) >= 2, f"the run is going with a checkpoint ({len(pids)} ranks)")
+os.kill(int(pids[-1]), signal.SIGKILL)
+t0 = time.time()
+try:
+    job.wait(timeout=60)
+except subprocess.TimeoutExpired:
+    job.kill()
+    raise AssertionError("the job hangs after a rank was killed")
+rkcase.check(job.returncode != 0, f"a killed rank stops the job (exit {job.returncode}) in {time.time() - t0:.1f} s")
+tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", killed, "--quiet", "--restart"] +
+          sum((["--set", s] for s in long), []))
+rkcase.check(same(final(whole), final(killed)), "restarted after SIGKILL: final state bitwise equal to the uninterrupted run")
