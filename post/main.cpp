@@ -80,21 +80,28 @@ int run(int argc, char** argv) {
   if (!prep_file) throw rk::Error(case_dir + "/prep.json: not found (is this a case directory written by rkprep?)");
   const int ranks = nlohmann::json::parse(prep_file)["ranks"].get<int>();
   std::vector<std::unique_ptr<rk::H5File>> files;
-  std::int64_t frames = -1;
+  std::int64_t frames = 0;
   for (int r = 0; r < ranks; ++r) {
     char name[40];
     std::snprintf(name, sizeof name, "/results/rank_%04d.h5", r);
     files.push_back(std::make_unique<rk::H5File>(case_dir + name, rk::H5File::Mode::read));
-    const auto n = files.back()->attr_int("frames");
-    frames = frames < 0 ? n : std::min(frames, n);
+    frames = std::max(frames, files.back()->attr_int("frames"));
   }
   fs::create_directories(case_dir + "/vtk");
   std::vector<std::pair<double, std::string>> index;
+  int skipped = 0;
   for (int f = 0; f < frames; ++f) {
-    Frame fr = read_frame(files, f);
+    Frame fr;
+    try {  // a frame missing on a rank or half written is reported and skipped; the rest is merged
+      fr = read_frame(files, f);
+      sort_by_global_id(fr, case_dir + " frame " + std::to_string(f));
+    } catch (const rk::Error& e) {
+      std::fprintf(stderr, "rkpost: frame %d skipped: %s\n", f, e.what());
+      ++skipped;
+      continue;
+    }
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05d.vtu", f);
-    sort_by_global_id(fr, case_dir + " frame " + std::to_string(f));
     std::vector<rk::VtuArray> data;
     data.push_back({"global_id", 1, {}, fr.gid});
     data.push_back({"displacement", 3, fr.u, {}});
@@ -108,8 +115,8 @@ int run(int argc, char** argv) {
   }
   rk::write_pvd(case_dir + "/vtk/case.pvd", index);
   if (!quiet)
-    std::printf("rkpost: %lld frames of %d ranks merged into %s/vtk/case.pvd\n", static_cast<long long>(frames), ranks,
-                case_dir.c_str());
+    std::printf("rkpost: %zu frames of %d ranks merged into %s/vtk/case.pvd (%d skipped)\n", index.size(), ranks,
+                case_dir.c_str(), skipped);
   return 0;
 }
 

@@ -131,7 +131,7 @@ HistoryWriter::~HistoryWriter() {
 void HistoryWriter::write(const std::vector<double>& values) {
   for (std::size_t k = 0; k < values.size(); ++k) std::fprintf(file_, "%s%.10g", k ? "," : "", values[k]);
   std::fprintf(file_, "\n");
-  std::fflush(file_);
+  if (std::fflush(file_) != 0 || std::ferror(file_)) throw Error("history.csv: write failed (disk full?)");
 }
 
 }  // namespace rk

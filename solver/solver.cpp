@@ -108,6 +108,10 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   if (comm.rank() == 0)
     history = std::make_unique<HistoryWriter>(opt.case_dir + "/history.csv", columns, opt.restart ? st.t : -1.0);
   const std::int64_t first_step = st.step;
+  // Output is collective; a failure on any rank (disk full, unwritable directory) stops every rank.
+  auto write_frame = [&](const std::vector<double>& velocity) {
+    collectively(comm, [&] { return results->write_frame(md, st, velocity, comm), 0; });
+  };
   OverlapExchange exchange(md, 3);
   std::vector<double> v_old(st.v.size());
   std::vector<double> row(columns.size(), 0.0), wall_force(scene.rigid_walls.size(), 0.0);
@@ -152,7 +156,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     comm.max(red, 3);
     timer.stop(kTimeStep);
     if (-red[0] < scene.health.min_dt_ratio * dt0) {  // a cell has collapsed: the run would never end
-      results->write_frame(md, st, st.v, comm);
+      write_frame(st.v);
       const std::int32_t I = md.cell_nodes[md.cell_node_offsets[stable.cell]];
       std::ostringstream why;
       why << "the stable time step collapsed to " << stable.dt << " s (" << stable.dt / dt0
@@ -168,7 +172,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
             << " s, " << describe_point(md, st, health.point);
       else
         why << "rank " << comm.rank() << ": non-finite forces at step " << st.step << ", t = " << st.t << " s";
-      results->write_frame(md, st, st.v, comm);
+      write_frame(st.v);
       comm.check(healthy, why.str() + " (last frame written)");
     }
 
@@ -254,12 +258,12 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
         row[c++] = sums[j + 4];
         j += 5;
       }
-      if (history) history->write(row);
+      collectively(comm, [&] { return history ? (history->write(row), 0) : 0; });  // a full disk stops all ranks
       next_history += hist_dt;
       // Runaway check; skipped in the first 10 % of the run, where the energies are still tiny and the
       // first-order work of freshly engaged contacts dominates their ratio.
       if (last_error > scene.health.max_energy_error && st.t > 0.1 * t_end) {
-        results->write_frame(md, st, st.v, comm);
+        write_frame(st.v);
         std::ostringstream why;
         why << "energy error " << last_error << " exceeds health.max_energy_error = " << scene.health.max_energy_error
             << " at step " << st.step << ", t = " << st.t << " s (last frame written); reduce time.cfl";
@@ -268,7 +272,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     }
     if (last || st.t >= next_output - 1e-9 * out_dt) {  // frame at t^n with vbar
       for (std::size_t k = 0; k < v_old.size(); ++k) v_old[k] = 0.5 * (v_old[k] + st.v[k]);
-      results->write_frame(md, st, v_old, comm);
+      write_frame(v_old);
       next_output += out_dt;
       timer.stop(kOutput);
     }

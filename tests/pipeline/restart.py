@@ -58,8 +58,8 @@ deadline = time.time() + 120
 while not ckpt.exists() and time.time() < deadline and job.poll() is None:
     time.sleep(0.05)
 time.sleep(0.3)
-pids = subprocess.run(["pgrep", "-f", f"rksolve {killed}"], capture_output=True, text=True).stdout.split()
-rkcase.check(job.poll() is None and len(pids) >= 2, f"the run is going with a checkpoint ({len(pids)} ranks)")
+pids = subprocess.run(["pgrep", "-f", f"^\\S*bin/rksolve {killed}"], capture_output=True, text=True).stdout.split()
+rkcase.check(job.poll() is None and len(pids) == 2, f"the run is going with a checkpoint ({len(pids)} ranks)")
 os.kill(int(pids[-1]), signal.SIGKILL)
 t0 = time.time()
 try:
