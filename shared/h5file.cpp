@@ -49,6 +49,13 @@ H5File::~H5File() {
   if (file_ >= 0) H5Fclose(file_);
 }
 
+void H5File::close() {
+  const bool flushed = H5Fflush(file_, H5F_SCOPE_GLOBAL) >= 0;
+  const bool closed = H5Fclose(file_) >= 0;
+  file_ = -1;
+  if (!flushed || !closed) throw Error(path_ + ": the file could not be completed (disk full?)");
+}
+
 bool H5File::exists(const std::string& name) const {
   // Walk the path so that a missing intermediate group is not an error.
   std::size_t pos = 0;

@@ -18,6 +18,9 @@ class H5File {
   H5File& operator=(const H5File&) = delete;
 
   const std::string& path() const { return path_; }
+  // Flushes and closes; throws if the data did not reach the file (disk full). The destructor closes
+  // without checking.
+  void close();
 
   // Datasets are 2-D (rows x cols), chunked and Fletcher32-checksummed; "a/b/c" creates groups.
   template <class T>

@@ -46,6 +46,7 @@ void write_subdomain(const std::string& path, const Subdomain& s) {
     f.write(std::string(name) + "vertices", s.dies[k].vertices, 3);
     f.write(std::string(name) + "triangles", s.dies[k].triangles, 3);
   }
+  f.close();
 }
 
 namespace {

@@ -12,9 +12,12 @@
 namespace rk {
 namespace {
 
-void fsync_path(const std::string& path) {
+bool fsync_path(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd >= 0) ::fsync(fd), ::close(fd);
+  if (fd < 0) return false;
+  const bool ok = ::fsync(fd) == 0;
+  ::close(fd);
+  return ok;
 }
 
 }  // namespace
@@ -25,10 +28,10 @@ std::string checkpoint_path(const std::string& case_dir, int rank) {
   return case_dir + name;
 }
 
-void write_checkpoint(const std::string& case_dir, const Model& md, const State& st, const RunClock& c,
-                      const std::vector<DieTotals>& dies) {
-  const std::string path = checkpoint_path(case_dir, md.rank), tmp = path + ".tmp";
-  std::filesystem::create_directories(case_dir + "/checkpoint");
+namespace {
+
+void write_temporary(const std::string& tmp, const Model& md, const State& st, const RunClock& c,
+                     const std::vector<DieTotals>& dies) {
   {
     H5File f(tmp, H5File::Mode::create);
     f.set_attr("rank", std::int64_t(md.rank));
@@ -45,8 +48,30 @@ void write_checkpoint(const std::string& case_dir, const Model& md, const State&
     f.write("points/cp_inv", st.cp_inv, 6);
     f.write("points/ep", st.ep);
     f.write("points/wp", st.wp);
+    f.close();
   }
-  fsync_path(tmp);
+  if (!fsync_path(tmp)) throw Error(tmp + ": cannot be synced to disk (disk full?)");
+  // the new checkpoint must read back before it replaces the last good one
+  {
+    H5File check(tmp, H5File::Mode::read);
+    if (check.read<double>("clock/scalars").size() != 10 || check.read<double>("points/wp").size() != md.m)
+      throw Error(tmp + ": the checkpoint did not read back; the previous one is kept");
+  }
+}
+
+}  // namespace
+
+void write_checkpoint(const std::string& case_dir, const Model& md, const State& st, const RunClock& c,
+                      const std::vector<DieTotals>& dies) {
+  const std::string path = checkpoint_path(case_dir, md.rank), tmp = path + ".tmp";
+  std::filesystem::create_directories(case_dir + "/checkpoint");
+  try {
+    write_temporary(tmp, md, st, c, dies);
+  } catch (const Error&) {  // leave no partial file behind; the last good checkpoint stays
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw;
+  }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) throw Error(path + ": cannot replace the checkpoint");
   fsync_path(case_dir + "/checkpoint");
 }

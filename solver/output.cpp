@@ -105,7 +105,9 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
   f.write(g + "eq_plastic_strain", ep);
   f.write(g + "von_mises", vm);
   f.write(g + "pressure", pr);
-  f.set_attr("frames", std::int64_t(++frames_));
+  f.set_attr("frames", std::int64_t(frames_ + 1));
+  f.close();
+  ++frames_;
 }
 
 HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::string>& columns, double resume_time) {
