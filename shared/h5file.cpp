@@ -99,6 +99,23 @@ std::size_t H5File::read_raw(const std::string& name, hid_t type, std::size_t el
   if (dims[0] > 0 && dims[1] != cols)
     throw Error(path_ + ": dataset '" + name + "' has " + std::to_string(dims[1]) + " columns, expected " +
                 std::to_string(cols));
+  hsize_t file_size = 0;
+  H5Fget_filesize(file_, &file_size);
+  if (dims[1] != 0 && dims[0] > file_size / (dims[1] * elem_size))  // uncompressed: it must fit in the file
+    throw Error(path_ + ": dataset '" + name + "' claims more data than the file holds (corrupt file)");
+  if (dims[0] * dims[1] > 0) {  // rkforge stores data chunked with Fletcher32: anything else is corrupt or foreign
+    Handle dcpl{H5Dget_create_plist(set.id), H5Pclose};
+    bool checksummed = false;
+    for (int k = 0; k < H5Pget_nfilters(dcpl.id); ++k) {
+      unsigned flags = 0;
+      std::size_t nelmts = 0;
+      unsigned values[4];
+      checksummed |= H5Pget_filter2(dcpl.id, unsigned(k), &flags, &nelmts, values, 0, nullptr, nullptr) == H5Z_FILTER_FLETCHER32;
+    }
+    if (H5Pget_layout(dcpl.id) != H5D_CHUNKED || !checksummed ||
+        H5Dget_storage_size(set.id) < dims[0] * dims[1] * elem_size)
+      throw Error(path_ + ": dataset '" + name + "' is not stored as rkforge writes it (corrupt file)");
+  }
   out.resize(dims[0] * dims[1] * elem_size);
   if (dims[0] > 0 && H5Dread(set.id, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
     throw Error(path_ + ": dataset '" + name + "' cannot be read: checksum mismatch or truncated file");

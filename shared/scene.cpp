@@ -214,7 +214,20 @@ Override parse_override(const std::string& text) {
 
 double minimum_dilation(const std::string& basis) { return basis == "quadratic" ? 2.5 : 1.5; }
 
+namespace {
+Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Override>& overrides, Side side);
+}
+
 Scene load_scene(const std::filesystem::path& file, const std::vector<Override>& overrides, Side side) {
+  try {
+    return load_scene_checked(file, overrides, side);
+  } catch (const YAML::Exception& e) {  // anything yaml-cpp refuses that the checks above did not name
+    throw Error(file.string() + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+}
+
+namespace {
+Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Override>& overrides, Side side) {
   const std::string name = file.string();
   YAML::Node root;
   try {
@@ -403,6 +416,7 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<Override>&
   s.prep_hash = fnv1a_hex(prep.c_str());
   return s;
 }
+}  // namespace
 
 }  // namespace rk
 

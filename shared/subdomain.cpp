@@ -3,8 +3,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include <fstream>
+#include <iterator>
+
 #include "error.hpp"
 #include "h5file.hpp"
+#include "hash.hpp"
 
 namespace rk {
 
@@ -14,7 +18,24 @@ std::string subdomain_path(const std::string& case_dir, int rank) {
   return case_dir + "/sub/" + name;
 }
 
+namespace {
+
+std::string file_hash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return fnv1a_hex(bytes);
+}
+
+}  // namespace
+
+std::string subdomain_hash_path(const std::string& path) { return path + ".fnv1a"; }
+
 void write_subdomain(const std::string& path, const Subdomain& s) {
+  write_subdomain_file(path, s);
+  std::ofstream(subdomain_hash_path(path)) << file_hash(path) << "\n";
+}
+
+void write_subdomain_file(const std::string& path, const Subdomain& s) {
   H5File f(path, H5File::Mode::create);
   f.set_attr("format_version", kFormatVersion);
   f.set_attr("rank", s.rank);
@@ -56,6 +77,15 @@ void require(bool ok, const std::string& path, const std::string& what) {
 }  // namespace
 
 Subdomain read_subdomain(const std::string& path, int rank, int ranks, const std::string& scene_hash) {
+  // The whole-file hash is checked before HDF5 parses a byte: libhdf5 is not safe on corrupt files.
+  if (!std::ifstream(path)) throw Error(path + ": file not found");
+  std::ifstream sidecar(subdomain_hash_path(path));
+  std::string expected;
+  if (!(sidecar >> expected)) {
+    throw Error(subdomain_hash_path(path) + ": checksum file missing; re-run rkprep");
+  }
+  if (file_hash(path) != expected)
+    throw Error(path + ": checksum mismatch: the file is corrupt or truncated; re-run rkprep");
   H5File f(path, H5File::Mode::read);
   Subdomain s;
   const auto version = f.attr_int("format_version");

@@ -59,10 +59,13 @@ struct Subdomain {
 
 std::string subdomain_path(const std::string& case_dir, int rank);
 
+// Writes the file and its whole-file hash beside it (PATH.fnv1a).
 void write_subdomain(const std::string& path, const Subdomain& s);
+void write_subdomain_file(const std::string& path, const Subdomain& s);  // the HDF5 file alone
+std::string subdomain_hash_path(const std::string& path);
 
-// Reads and checks that the file belongs to this run: format version, rank, rank count, scene hash,
-// consistent counts and finite coordinates. Any mismatch is an rk::Error naming the file and problem.
+// Reads and checks that the file belongs to this run: whole-file hash (before HDF5 parses it),
+// format version, rank, rank count, scene hash, consistent counts and finite coordinates. Any mismatch is an rk::Error naming the file and problem.
 Subdomain read_subdomain(const std::string& path, int rank, int ranks, const std::string& scene_hash);
 
 }  // namespace rk

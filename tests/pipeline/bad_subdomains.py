@@ -29,6 +29,7 @@ other = tools.case("bad_other_scene")
 tools.prep(case, 2, sets=coarse)
 tools.prep(other, 2, sets=["discretization.spacing=1.4e-3"])
 shutil.copy(other / "sub" / "rank_0000.h5", case / "sub" / "rank_0000.h5")
+shutil.copy(other / "sub" / "rank_0000.h5.fnv1a", case / "sub" / "rank_0000.h5.fnv1a")
 expect_failure(case, 2, "was prepared from another scene", "foreign subdomain file")
 
 case = tools.case("bad_count")
@@ -38,4 +39,4 @@ expect_failure(case, 3, "prepared for 2 ranks but the job has 3", "wrong rank co
 case = tools.case("bad_version")
 tools.prep(case, 1, sets=coarse)
 (case / "sub" / "rank_0000.h5").write_bytes(b"not hdf5 at all")
-expect_failure(case, 1, "not an HDF5 file", "garbage subdomain file")
+expect_failure(case, 1, "checksum mismatch: the file is corrupt or truncated", "garbage subdomain file")

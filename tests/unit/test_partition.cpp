@@ -52,7 +52,9 @@ TEST_P(Partition, Invariants) {
       ASSERT_EQ(theirs.size(), s.overlap[k].size());
       for (std::size_t j = 0; j < theirs.size(); ++j) {
         EXPECT_EQ(s.global_id[s.overlap[k][j]], other.global_id[theirs[j]]) << "same particle in both maps";
-        if (j > 0) EXPECT_GT(s.global_id[s.overlap[k][j]], s.global_id[s.overlap[k][j - 1]]) << "ascending global id";
+        if (j > 0) {
+          EXPECT_GT(s.global_id[s.overlap[k][j]], s.global_id[s.overlap[k][j - 1]]) << "ascending global id";
+        }
       }
     }
   }

@@ -10,6 +10,7 @@
 
 #include "error.hpp"
 #include "h5file.hpp"
+#include "hash.hpp"
 #include "subdomain.hpp"
 
 namespace {
@@ -43,6 +44,12 @@ rk::Subdomain sample() {
 
 std::string temp(const std::string& name) {
   return (fs::temp_directory_path() / ("rk_test_" + std::to_string(::getpid()) + "_" + name)).string();
+}
+
+void rehash(const std::string& path) {  // as if the file had been written like this
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ofstream(rk::subdomain_hash_path(path)) << rk::fnv1a_hex(bytes) << "\n";
 }
 
 std::string error_of(const std::string& path, int rank, int ranks, const std::string& hash) {
@@ -87,6 +94,7 @@ TEST(Subdomain, AnotherFormatVersionIsRefused) {
     rk::H5File f(path, rk::H5File::Mode::append);
     f.set_attr("format_version", std::int64_t(rk::kFormatVersion + 1));
   }
+  rehash(path);  // a consistent file of another version
   const std::string e = error_of(path, 1, 2, "");
   EXPECT_NE(e.find(path), std::string::npos);
   EXPECT_NE(e.find("format version " + std::to_string(rk::kFormatVersion + 1)), std::string::npos) << e;
@@ -97,8 +105,10 @@ TEST(Subdomain, TruncatedFileIsRefused) {
   rk::write_subdomain(path, sample());
   fs::resize_file(path, fs::file_size(path) / 2);
   const std::string e = error_of(path, 1, 2, "");
-  EXPECT_NE(e.find(path), std::string::npos);
-  EXPECT_TRUE(e.find("truncated") != std::string::npos || e.find("corrupt") != std::string::npos) << e;
+  EXPECT_NE(e.find(path + ": checksum mismatch: the file is corrupt or truncated"), std::string::npos) << e;
+  rehash(path);  // even with a matching hash, HDF5 and our checks refuse it
+  const std::string e2 = error_of(path, 1, 2, "");
+  EXPECT_TRUE(e2.find("truncated") != std::string::npos || e2.find("corrupt") != std::string::npos) << e2;
 }
 
 TEST(Subdomain, CorruptedDatasetFailsItsChecksum) {
@@ -116,9 +126,44 @@ TEST(Subdomain, CorruptedDatasetFailsItsChecksum) {
   ASSERT_NE(at, std::string::npos);
   bytes[at + 17] ^= 0x10;
   std::ofstream(path, std::ios::binary) << bytes;
+  EXPECT_NE(error_of(path, 1, 2, "").find("checksum mismatch"), std::string::npos) << "the whole-file hash";
+  rehash(path);  // past the whole-file hash, the dataset's Fletcher32 checksum still catches it
   const std::string e = error_of(path, 1, 2, "");
   EXPECT_NE(e.find("particles/volume"), std::string::npos) << e;
   EXPECT_NE(e.find("checksum"), std::string::npos) << e;
+}
+
+}  // namespace
+
+namespace {
+
+// Crashes found by `make fuzz` (tests/fuzz), kept as regression tests.
+std::string fuzz_case(const std::string& name) {  // a copy with a matching hash: HDF5 parses it
+  const std::string path = temp(name);
+  fs::copy_file(std::string(RK_SOURCE_DIR) + "/tests/unit/data/" + name, path, fs::copy_options::overwrite_existing);
+  rehash(path);
+  return path;
+}
+
+TEST(SubdomainFuzz, HugeClaimedDatasetIsRefusedNotAllocated) {
+  const std::string e = error_of(fuzz_case("fuzz_subdomain_oom_1.h5"), 0, 1, "");
+  EXPECT_FALSE(e.empty());
+  EXPECT_TRUE(e.find("corrupt") != std::string::npos || e.find("cannot") != std::string::npos ||
+              e.find("missing") != std::string::npos || e.find("checksum") != std::string::npos) << e;
+}
+
+}  // namespace
+
+namespace {
+
+TEST(SubdomainFuzz, CorruptFileIsRefusedBeforeHdf5ParsesIt) {  // libhdf5 itself overflows on this one
+  const std::string path = temp("fuzz_overflow.h5");
+  fs::copy_file(std::string(RK_SOURCE_DIR) + "/tests/unit/data/fuzz_subdomain_overflow_1.h5", path,
+                fs::copy_options::overwrite_existing);
+  const std::string e = error_of(path, 0, 1, "");
+  EXPECT_NE(e.find("checksum file missing"), std::string::npos) << e;
+  std::ofstream(rk::subdomain_hash_path(path)) << "0123456789abcdef\n";
+  EXPECT_NE(error_of(path, 0, 1, "").find("checksum mismatch"), std::string::npos);
 }
 
 }  // namespace
