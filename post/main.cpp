@@ -10,6 +10,8 @@
 
 #include "cli.hpp"
 #include "h5file.hpp"
+#include "scene.hpp"
+#include "subdomain.hpp"
 #include "vtu_writer.hpp"
 
 namespace fs = std::filesystem;
@@ -88,7 +90,12 @@ int run(int argc, char** argv) {
     frames = std::max(frames, files.back()->attr_int("frames"));
   }
   fs::create_directories(case_dir + "/vtk");
-  std::vector<std::pair<double, std::string>> index;
+  // the dies, placed at their stroke at each frame's time (a part of their own in the .pvd)
+  const rk::Scene scene = rk::load_scene(case_dir + "/scene.resolved.yaml", {}, rk::Side::solve);
+  std::vector<rk::DieSurface> dies;
+  if (!scene.dies.empty())
+    dies = rk::read_subdomain(rk::subdomain_path(case_dir, 0), 0, ranks, scene.prep_hash).dies;
+  std::vector<rk::PvdEntry> index;
   int skipped = 0;
   for (int f = 0; f < frames; ++f) {
     Frame fr;
@@ -111,24 +118,25 @@ int run(int argc, char** argv) {
     data.push_back({"pressure", 1, fr.p, {}});
     data.push_back({"rank", 1, {}, fr.rank});
     rk::write_vtu(case_dir + "/vtk/" + name, fr.x, data);
-    index.emplace_back(fr.time, name);
+    index.push_back({fr.time, 0, name});
+    for (std::size_t k = 0; k < dies.size(); ++k) {
+      const auto& die = scene.dies[k];
+      std::vector<double> x = dies[k].vertices;
+      const double stroke = die.motion.stroke(fr.time);
+      for (std::size_t v = 0; v < x.size(); ++v) x[v] += stroke * die.motion.direction[v % 3];
+      char file[160];
+      std::snprintf(file, sizeof file, "die_%s_%05d.vtu", die.name.c_str(), f);
+      rk::write_vtu(case_dir + "/vtk/" + file, x, {}, dies[k].triangles);
+      index.push_back({fr.time, int(k + 1), file});
+    }
   }
   rk::write_pvd(case_dir + "/vtk/case.pvd", index);
   if (!quiet)
-    std::printf("rkpost: %zu frames of %d ranks merged into %s/vtk/case.pvd (%d skipped)\n", index.size(), ranks,
-                case_dir.c_str(), skipped);
+    std::printf("rkpost: %lld frames of %d ranks merged into %s/vtk/case.pvd (%d skipped, %zu dies)\n",
+                static_cast<long long>(frames - skipped), ranks, case_dir.c_str(), skipped, dies.size());
   return 0;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const rk::Error& e) {
-    std::fprintf(stderr, "rkpost: error: %s\n", e.what());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "rkpost: internal error: %s\n", e.what());
-  }
-  return 1;
-}
+int main(int argc, char** argv) { return rk::guarded_main("rkpost", [&] { return run(argc, argv); }); }

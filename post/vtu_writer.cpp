@@ -35,15 +35,17 @@ void data_array(std::ofstream& f, const char* type, const std::string& name, int
 
 }  // namespace
 
-void write_vtu(const std::string& path, const std::vector<double>& points, const std::vector<VtuArray>& point_data) {
+void write_vtu(const std::string& path, const std::vector<double>& points, const std::vector<VtuArray>& point_data,
+               const std::vector<std::int32_t>& triangles) {
   const std::size_t n = points.size() / 3;
+  const std::size_t cells = triangles.empty() ? n : triangles.size() / 3;
   const std::string tmp = path + ".tmp";
   {
     std::ofstream f(tmp);
     if (!f) throw Error(path + ": cannot write the VTK file");
     f << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
          "header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\""
-      << n << "\" NumberOfCells=\"" << n << "\">\n      <PointData>\n";
+      << n << "\" NumberOfCells=\"" << cells << "\">\n      <PointData>\n";
     for (const auto& a : point_data) {
       if (!a.i64.empty() || a.f64.empty()) data_array(f, "Int64", a.name, a.components, a.i64);
       else data_array(f, "Float64", a.name, a.components, a.f64);
@@ -51,9 +53,11 @@ void write_vtu(const std::string& path, const std::vector<double>& points, const
     f << "      </PointData>\n      <Points>\n";
     data_array(f, "Float64", "Points", 3, points);
     f << "      </Points>\n      <Cells>\n";
-    std::vector<std::int64_t> conn(n), offsets(n);
-    std::vector<std::uint8_t> types(n, 1);  // VTK_VERTEX
-    for (std::size_t i = 0; i < n; ++i) conn[i] = std::int64_t(i), offsets[i] = std::int64_t(i + 1);
+    const int per = triangles.empty() ? 1 : 3;
+    std::vector<std::int64_t> conn(per * cells), offsets(cells);
+    std::vector<std::uint8_t> types(cells, triangles.empty() ? 1 : 5);  // VTK_VERTEX or VTK_TRIANGLE
+    for (std::size_t i = 0; i < per * cells; ++i) conn[i] = triangles.empty() ? std::int64_t(i) : triangles[i];
+    for (std::size_t c = 0; c < cells; ++c) offsets[c] = std::int64_t(per * (c + 1));
     data_array(f, "Int64", "connectivity", 1, conn);
     data_array(f, "Int64", "offsets", 1, offsets);
     data_array(f, "UInt8", "types", 1, types);
@@ -63,12 +67,13 @@ void write_vtu(const std::string& path, const std::vector<double>& points, const
   std::rename(tmp.c_str(), path.c_str());
 }
 
-void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& frames) {
+void write_pvd(const std::string& path, const std::vector<PvdEntry>& entries) {
   std::ofstream f(path);
   if (!f) throw Error(path + ": cannot write the ParaView collection");
   f << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
   f.precision(12);
-  for (const auto& [t, file] : frames) f << "    <DataSet timestep=\"" << t << "\" part=\"0\" file=\"" << file << "\"/>\n";
+  for (const auto& e : entries)
+    f << "    <DataSet timestep=\"" << e.time << "\" part=\"" << e.part << "\" file=\"" << e.file << "\"/>\n";
   f << "  </Collection>\n</VTKFile>\n";
 }
 

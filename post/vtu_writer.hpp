@@ -15,8 +15,15 @@ struct VtuArray {
   std::vector<std::int64_t> i64;  // ... or i64 holds the values
 };
 
-void write_vtu(const std::string& path, const std::vector<double>& points, const std::vector<VtuArray>& point_data);
+// One vertex cell per point, or the given triangles (3 point indices each) when not empty.
+void write_vtu(const std::string& path, const std::vector<double>& points, const std::vector<VtuArray>& point_data,
+               const std::vector<std::int32_t>& triangles = {});
 
-void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& frames);
+struct PvdEntry {
+  double time;
+  int part;  // 0: the workpiece, 1..: the dies
+  std::string file;
+};
+void write_pvd(const std::string& path, const std::vector<PvdEntry>& entries);
 
 }  // namespace rk

@@ -130,13 +130,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const rk::Error& e) {
-    std::fprintf(stderr, "rkprep: error: %s\n", e.what());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "rkprep: internal error: %s\n", e.what());
-  }
-  return 1;
-}
+int main(int argc, char** argv) { return rk::guarded_main("rkprep", [&] { return run(argc, argv); }); }

@@ -29,7 +29,8 @@ def spacing_of(case: Path) -> float:
 
 def frames_of(case: Path):
     root = ET.parse(case / "vtk" / "case.pvd").getroot()
-    return [(float(d.get("timestep")), case / "vtk" / d.get("file")) for d in root.iter("DataSet")]
+    return [(float(d.get("timestep")), case / "vtk" / d.get("file")) for d in root.iter("DataSet")
+            if d.get("part", "0") == "0"]  # part 0 is the workpiece; the dies are parts 1, 2, ...
 
 
 def metrics(case: Path, frame: int = -1, axis: int = 2) -> dict:

@@ -23,4 +23,17 @@ inline std::vector<Override> parse_overrides(const std::vector<std::string>& set
   return out;
 }
 
+// main() of a serial program: runs `run`, turning any error into one message and exit status 1.
+template <class Run>
+int guarded_main(const char* program, Run run) {
+  try {
+    return run();
+  } catch (const Error& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: internal error: %s\n", program, e.what());
+  }
+  return 1;
+}
+
 }  // namespace rk

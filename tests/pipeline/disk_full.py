@@ -1,7 +1,8 @@
 """A full disk stops the whole job with a clear message (no hang, non-zero exit), keeps the last
 good checkpoint, and the run restarts from it once there is room (issue 8).
-(1) history.csv on /dev/full (every write fails with ENOSPC); (2) the case on a 1.4 MiB tmpfs that
-fills up mid-run, then copied to a disk with room and restarted to the end."""
+(1) history.csv on /dev/full (every write fails with ENOSPC); (2) the checkpoint folder on a
+300 KiB tmpfs that holds one set of checkpoints but not the next: the run stops, the first set
+survives complete, and the case, copied to a disk with room, restarts from it to the end."""
 import os
 import shutil
 import subprocess
@@ -23,18 +24,19 @@ rkcase.check(p.returncode != 0 and "history.csv: write failed (disk full?)" in p
              f"history on a full disk: {p.stderr.strip().splitlines()[0] if p.stderr.strip() else p.returncode}")
 rkcase.check(time.time() - t0 < 60, f"stopped in {time.time() - t0:.1f} s")
 
-mnt = tools.case("full_tmpfs")
+subprocess.run(["umount", str(tools.work / "full_tmpfs" / "checkpoint")], capture_output=True)  # a stale mount
+case = tools.case("full_tmpfs")
+shutil.copytree(prep, case)
+mnt = case / "checkpoint"
 mnt.mkdir()
-mounted = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=1400k", "tmpfs", str(mnt)], capture_output=True).returncode == 0
+mounted = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=300k", "tmpfs", str(mnt)], capture_output=True).returncode == 0
 if not mounted:
     print("note: no tmpfs can be mounted here; only the /dev/full case ran")
 else:
     try:
-        case = mnt / "case"
-        shutil.copytree(prep, case)
         p = tools.solve(case, 2, sets=sets, expect_ok=False, timeout=120)
         rkcase.check(p.returncode != 0 and ("disk full" in p.stderr or "cannot" in p.stderr),
-                     f"results on a full tmpfs: {p.stderr.strip().splitlines()[0] if p.stderr.strip() else p.returncode}")
+                     f"checkpoints on a full tmpfs: {p.stderr.strip().splitlines()[0] if p.stderr.strip() else p.returncode}")
         rescued = tools.case("full_rescued")
         shutil.copytree(case, rescued)
     finally:

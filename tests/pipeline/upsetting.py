@@ -37,3 +37,7 @@ for ranks in (1, 2):
     frames[ranks] = (m.points[order], m.point_data["velocity"][order])
 rkcase.check(np.array_equal(frames[1][0], frames[2][0]) and np.array_equal(frames[1][1], frames[2][1]),
              "upsetting with die contact: 2 ranks bitwise equal to 1 rank")
+
+die = meshio.read(sorted((case / "vtk").glob("die_die_*.vtu"))[-1])
+rkcase.check(die.cells[0].type == "triangle" and len(die.cells[0].data) > 0, "the die is written as triangles for ParaView")
+rkcase.check(abs(die.points[:, 2].min() - 5e-3) < 1e-9, f"the die face at its final stroke: z = {1e3 * die.points[:, 2].min():.3f} mm")
