@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -128,6 +130,9 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   PhaseTimer timer;
   const double setup_s = comm.wtime() - wall0;
   double last_progress = comm.wtime();
+  const bool terminal = ::isatty(::fileno(stdout)) != 0;
+  std::int64_t progress_step = st.step;
+  const double progress_t0 = st.t;
   if (!opt.quiet && comm.rank() == 0)
     std::printf("rksolve: %d ranks, setup %.2f s, mass scaling %.3g, running to t = %g s\n", comm.size(), setup_s,
                 md.mass_scaling, t_end);
@@ -283,10 +288,14 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     st.dt_half = dt;
     ++st.step;
     timer.stop(kUpdate);
-    if (!opt.quiet && comm.rank() == 0 && comm.wtime() - last_progress > 2.0) {
-      last_progress = comm.wtime();
-      std::printf("rksolve: t = %.4g s (%5.1f %%), step %lld, dt = %.3g s, energy error %.2e\n", st.t,
-                  100 * st.t / t_end, static_cast<long long>(st.step), dt, last_error);
+    if (!opt.quiet && comm.rank() == 0 && comm.wtime() - last_progress > (terminal ? 2.0 : 10.0)) {
+      // plain periodic lines (under mpirun a rank cannot tell a terminal from a pipe reliably)
+      const double now = comm.wtime(), rate = double(st.step - progress_step) / (now - last_progress);
+      const double eta = (now - wall0 - setup_s) * (t_end - st.t) / std::max(st.t - progress_t0, 1e-300);
+      last_progress = now;
+      progress_step = st.step;
+      std::printf("rksolve: t = %.4g s (%5.1f %%)  step %lld  %.0f steps/s  dt = %.3g s  energy error %.2e  ETA %.0f s\n",
+                  st.t, 100 * st.t / t_end, static_cast<long long>(st.step), rate, dt, last_error, eta);
       std::fflush(stdout);
     }
   }
