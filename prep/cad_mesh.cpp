@@ -3,12 +3,14 @@
 #include <gmsh.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <unordered_map>
 
 #include "error.hpp"
 #include "gmsh_session.hpp"
+#include "stl_check.hpp"
 
 namespace rk {
 
@@ -32,8 +34,21 @@ VolumeMesh mesh_with_gmsh(const MeshRequest& r) {
     gmsh::option::setNumber("Mesh.MeshSizeMax", 2 * h);   // subdivision halves the edges
     gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * h);
     gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 2);  // all hexahedra
+  } else if (ext == ".stl") {
+    check_stl_solid(r.cad);
+    gmsh::merge(r.cad);
+    gmsh::model::mesh::classifySurfaces(M_PI / 4, true, false, M_PI);  // STL facets -> surfaces
+    gmsh::model::mesh::createGeometry();
+    gmsh::vectorpair surfaces;
+    gmsh::model::getEntities(surfaces, 2);
+    std::vector<int> tags;
+    for (auto [dim, tag] : surfaces) tags.push_back(tag);
+    gmsh::model::geo::addVolume({gmsh::model::geo::addSurfaceLoop(tags)});
+    gmsh::model::geo::synchronize();
+    gmsh::option::setNumber("Mesh.MeshSizeMax", 2 * h);
+    gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 2);
   } else {
-    throw Error(r.cad + ": unsupported CAD format '" + ext + "' (use .geo, .step, .iges or .brep)");
+    throw Error(r.cad + ": unsupported CAD format '" + ext + "' (use .geo, .step, .iges, .brep or .stl)");
   }
   gmsh::vectorpair volumes;
   gmsh::model::getEntities(volumes, 3);
