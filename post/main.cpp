@@ -10,6 +10,7 @@
 
 #include "cli.hpp"
 #include "h5file.hpp"
+#include "report.hpp"
 #include "scene.hpp"
 #include "subdomain.hpp"
 #include "vtu_writer.hpp"
@@ -131,6 +132,7 @@ int run(int argc, char** argv) {
     }
   }
   rk::write_pvd(case_dir + "/vtk/case.pvd", index);
+  rk::write_report(case_dir);
   if (!quiet)
     std::printf("rkpost: %lld frames of %d ranks merged into %s/vtk/case.pvd (%d skipped, %zu dies)\n",
                 static_cast<long long>(frames - skipped), ranks, case_dir.c_str(), skipped, dies.size());

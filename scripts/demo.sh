@@ -14,9 +14,11 @@ mpirun -np "$ranks" "$build/bin/rksolve" "$case_dir"
 echo "== rkpost"
 "$build/bin/rkpost" "$case_dir"
 /usr/bin/python3 "$root/scripts/plot_taylor.py" "$case_dir"
+"$build/bin/rkpost" "$case_dir" --quiet  # again, so that report.md links the plots
 echo
 /usr/bin/python3 "$root/scripts/taylor_metrics.py" "$case_dir"
 echo
 echo "Results:  $case_dir/vtk/case.pvd   (open in ParaView: paraview $case_dir/vtk/case.pvd)"
 echo "Pictures: $case_dir/plots/taylor_radius_length.png  $case_dir/plots/energies.png"
+echo "Report:   $case_dir/report.md"
 echo "Data:     $case_dir/history.csv  $case_dir/solve.json  $case_dir/prep.json"

@@ -41,6 +41,8 @@ for field in ("global_id", "displacement", "velocity", "eq_plastic_strain", "von
     rkcase.check(field in vtu.point_data, f"point data '{field}' present")
 rkcase.check(np.array_equal(np.sort(vtu.point_data["global_id"].ravel()), np.arange(prep["particles"])), "every particle once")
 rkcase.check(m["finite"], "no NaN or Inf in the output")
+report = (case / "report.md").read_text()
+rkcase.check(f"{prep['particles']} / {prep['cells']}" in report and "energy balance" in report, "report.md holds the key numbers")
 
 rows = list(csv.DictReader(open(case / "history.csv")))
 ke0 = json.loads((case / "solve.json").read_text())["initial_kinetic_energy"]
