@@ -54,8 +54,14 @@ LogStrain log_strain(const Mat3& be) {
   return out;
 }
 
-Mat3 exp_twice(const LogStrain& ls, const Mat3& eps) {  // exp(2 eps), eps coaxial with the trial strain
-  if (!ls.spectral) return exp_series(2 * eps, 2 * eps.norm());
+// The returned b_e = exp(2 eps_e) with eps_e = eps_trial - d_eps_p, all coaxial: spectrally when the
+// stretch is large, else as b_e^trial exp(-2 d_eps_p), whose argument (one step's plastic strain)
+// is tiny, so the series needs only a few terms.
+Mat3 returned_be(const LogStrain& ls, const Mat3& be_trial, const Mat3& eps, const Mat3& deps_p) {
+  if (!ls.spectral) {
+    const Mat3 b = be_trial * exp_series(-2 * deps_p, 2 * deps_p.norm());
+    return 0.5 * (b + b.transpose());
+  }
   const Eigen::Vector3d e = (ls.vectors.transpose() * eps * ls.vectors).diagonal();
   return ls.vectors * (2 * e).array().exp().matrix().asDiagonal() * ls.vectors.transpose();
 }
@@ -73,22 +79,25 @@ J2Update j2_update(const Eigen::Matrix3d& F, const J2Params& p, double cp_inv[6]
   const double q = std::sqrt(1.5 * s.squaredNorm());
 
   J2Update out;
-  if (p.plastic && q > p.yield(ep)) {
+  double y0, h0;
+  if (p.plastic) p.yield_and_slope(ep, y0, h0);
+  if (p.plastic && q > y0) {
     // q - 3G dgamma = sigma_y(ep + dgamma): one step for linear hardening, Newton for the power law
-    double dgamma = (q - p.yield(ep)) / (3 * p.shear + p.slope(ep));
+    double dgamma = (q - y0) / (3 * p.shear + h0), y = y0, h = h0;
     for (int it = 0; it < 50 && p.power_law; ++it) {
-      const double r = q - 3 * p.shear * dgamma - p.yield(ep + dgamma);
-      const double step = r / (3 * p.shear + p.slope(ep + dgamma));
+      p.yield_and_slope(ep + dgamma, y, h);
+      const double step = (q - 3 * p.shear * dgamma - y) / (3 * p.shear + h);
       dgamma += step;
       if (std::abs(step) <= 1e-14 * (dgamma + 1e-300)) break;
     }
     const double scale = 1 - 3 * p.shear * dgamma / q;
+    const Mat3 deps_p = (1 - scale) * dev;  // plastic strain increment (deviatoric, coaxial)
     s *= scale;
     dev *= scale;
     ep += dgamma;
     out.dissipation = p.yield(ep) * dgamma;
     // C_p^{-1} = F^{-1} b_e F^{-T} with the returned b_e = exp(2 eps_e)
-    const Mat3 be_new = exp_twice(ls, dev + vol / 3 * Mat3::Identity());
+    const Mat3 be_new = returned_be(ls, be, dev + vol / 3 * Mat3::Identity(), deps_p);
     const Mat3 Fi = F.inverse();
     const Mat3 C = Fi * be_new * Fi.transpose();
     cp_inv[0] = C(0, 0), cp_inv[1] = C(1, 1), cp_inv[2] = C(2, 2);

@@ -28,6 +28,15 @@ struct J2Params {
   double slope(double ep) const {
     return power_law ? exponent * strength * std::pow(eps0 + ep, exponent - 1) : hardening;
   }
+  // sigma_y and d sigma_y / d ep together (one pow for the power law)
+  void yield_and_slope(double ep, double& y, double& h) const {
+    if (!power_law) {
+      y = yield0 + hardening * ep, h = hardening;
+      return;
+    }
+    y = strength * std::pow(eps0 + ep, exponent);
+    h = exponent * y / (eps0 + ep);
+  }
 };
 
 struct J2Update {
