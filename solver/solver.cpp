@@ -117,7 +117,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   OverlapExchange exchange(md, 3);
   std::vector<double> v_old(st.v.size());
   std::vector<double> row(columns.size(), 0.0), wall_force(scene.rigid_walls.size(), 0.0);
-  std::vector<double> sums(4 + 5 * scene.dies.size() + scene.rigid_walls.size());
+  std::vector<double> sums(4 + scene.rigid_walls.size() + 5 * scene.dies.size());  // see the history row
 
   const double t_end = scene.time.end, out_dt = scene.time.output_interval;
   const double hist_dt = t_end / 500;
@@ -224,44 +224,42 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
 
     if (last || st.t >= next_history - 1e-9 * hist_dt) {  // history row at t^n
       Energies e = compute_energies(md, st, v_old, comm);
-      std::size_t k = 0;
-      sums[k++] = double(contacts);
-      double friction = 0, die_work = 0;
-      for (const auto& d : dies.totals()) {
-        sums[k++] = double(d.contacts), friction += d.friction_work, die_work += d.contact_work;
-        for (double f : d.force) sums[k++] = f;
-        sums[k++] = d.press_work;
-      }
-      double springs = 0;
-      for (const auto& d : dies.totals()) springs += d.spring_energy;
-      sums[k++] = springs, sums[k++] = friction, sums[k++] = die_work;
-      for (double f : wall_force) sums[k++] = f;
-      comm.sum(sums.data(), int(k));
+      // Global sums for the row, laid out as: the scalars below, one force per rigid wall, then
+      // (contacts, fx, fy, fz, press work) per die.
+      enum { kContacts, kSprings, kFriction, kDieWork, kScalars };
+      const std::size_t walls = wall_force.size(), die0 = kScalars + walls;
+      std::fill(sums.begin(), sums.end(), 0.0);
+      sums[kContacts] = double(contacts);
+      for (std::size_t w = 0; w < walls; ++w) sums[kScalars + w] = wall_force[w];
       double pen = 0;
-      for (const auto& d : dies.totals()) pen = std::max(pen, d.max_penetration);
+      for (std::size_t d = 0; d < dies.size(); ++d) {
+        const DieTotals& t = dies.totals()[d];
+        double* out = &sums[die0 + 5 * d];
+        out[0] = double(t.contacts), out[1] = t.force[0], out[2] = t.force[1], out[3] = t.force[2], out[4] = t.press_work;
+        sums[kContacts] += double(t.contacts);
+        sums[kSprings] += t.spring_energy, sums[kFriction] += t.friction_work, sums[kDieWork] += t.contact_work;
+        pen = std::max(pen, t.max_penetration);
+      }
+      comm.sum(sums.data(), int(sums.size()));
       comm.max(&pen, 1);
-      e.contact += sums[k - 1 - wall_force.size()];
-      e.internal += sums[k - 3 - wall_force.size()];  // penalty springs store energy like the material
+      e.contact += sums[kDieWork];
+      e.internal += sums[kSprings];  // penalty springs store energy like the material
       last_error = energy_error(e, kinetic0);
       const double ratio = e.internal > 0 ? e.kinetic / e.internal : 0.0;
       if (st.t > 0.05 * t_end) max_ke_ratio = std::max(max_ke_ratio, ratio);
-      std::size_t c = 0, j = 0;
-      double die_contacts = 0;
-      for (std::size_t d = 0; d < dies.size(); ++d) die_contacts += sums[1 + 5 * d];
-      for (double v : {st.t, dt, e.kinetic, e.internal, e.plastic, e.external, e.contact, last_error,
-                       sums[k - 2 - wall_force.size()], sums[0] + die_contacts, pen, ratio})
+      std::size_t c = 0;
+      for (double v : {st.t, dt, e.kinetic, e.internal, e.plastic, e.external, e.contact, last_error, sums[kFriction],
+                       sums[kContacts], pen, ratio})
         row[c++] = v;
-      for (std::size_t w = 0; w < wall_force.size(); ++w) row[c++] = sums[k - wall_force.size() + w];
-      j = 1;
+      for (std::size_t w = 0; w < walls; ++w) row[c++] = sums[kScalars + w];
       for (std::size_t d = 0; d < dies.size(); ++d) {
         const Die& die = dies.die(d);
-        const double f[3] = {sums[j + 1], sums[j + 2], sums[j + 3]};
+        const double* f = &sums[die0 + 5 * d + 1];
         row[c++] = die.motion.stroke(st.t);
         row[c++] = die.force_factor * (f[0] * die.motion.direction[0] + f[1] * die.motion.direction[1] +
                                        f[2] * die.motion.direction[2]);
         row[c++] = f[0], row[c++] = f[1], row[c++] = f[2];
-        row[c++] = sums[j + 4];
-        j += 5;
+        row[c++] = f[3];
       }
       collectively(comm, [&] { return history ? (history->write(row), 0) : 0; });  // a full disk stops all ranks
       next_history += hist_dt;
