@@ -51,15 +51,13 @@ double peak_memory_mb() {
   return 0;
 }
 
-std::string describe_point(const Model& md, const State& st, std::size_t g) {
-  // the point's nearest particle, for a message the user can act on
-  std::int32_t I = md.nbr[md.nbr_offsets[g]];
+// "particle 12 at (x, y, z) m": the current position, for messages the user can act on
+std::string describe_particle(const Model& md, const State& st, std::int32_t I) {
   std::ostringstream s;
-  s << "near particle " << md.global_id[I] << " at (" << md.X[3 * I] + st.u[3 * I] << ", "
+  s << "particle " << md.global_id[I] << " at (" << md.X[3 * I] + st.u[3 * I] << ", "
     << md.X[3 * I + 1] + st.u[3 * I + 1] << ", " << md.X[3 * I + 2] + st.u[3 * I + 2] << ") m";
   return s.str();
 }
-
 
 std::vector<std::string> history_columns(const Scene& scene) {
   std::vector<std::string> c{"time",         "dt",          "kinetic",      "internal",      "plastic_work",
@@ -162,19 +160,18 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     timer.stop(kTimeStep);
     if (-red[0] < scene.health.min_dt_ratio * dt0) {  // a cell has collapsed: the run would never end
       write_frame(st.v);
-      const std::int32_t I = md.cell_nodes[md.cell_node_offsets[stable.cell]];
       std::ostringstream why;
       why << "the stable time step collapsed to " << stable.dt << " s (" << stable.dt / dt0
-          << " of the initial step) at step " << st.step << ", t = " << st.t << " s, in the cell of particle "
-          << md.global_id[I] << " at (" << md.X[3 * I] + st.u[3 * I] << ", " << md.X[3 * I + 1] + st.u[3 * I + 1] << ", "
-          << md.X[3 * I + 2] + st.u[3 * I + 2] << ") m (last frame written); refine the spacing there";
+          << " of the initial step) at step " << st.step << ", t = " << st.t << " s, in the cell of "
+          << describe_particle(md, st, md.cell_nodes[md.cell_node_offsets[stable.cell]])
+          << " (last frame written); refine the spacing there";
       comm.check(stable.dt > -red[0], why.str());
     }
     if (red[2] > 0) {  // a rank is unhealthy: show the user the state, then stop every rank
       std::ostringstream why;
       if (!health.ok)
         why << "rank " << comm.rank() << ": det F = " << health.J << " at step " << st.step << ", t = " << st.t
-            << " s, " << describe_point(md, st, health.point);
+            << " s, near " << describe_particle(md, st, md.nbr[md.nbr_offsets[health.point]]);
       else
         why << "rank " << comm.rank() << ": non-finite forces at step " << st.step << ", t = " << st.t << " s";
       write_frame(st.v);
@@ -215,7 +212,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       wall_force[w] = r.normal_force;
       contacts += r.contacts;
     }
-    dies.account(md, st, v_old, dt_avg, st.t);
+    dies.account(st, v_old, dt_avg, st.t);
     if (has_gravity)  // work of the body force on the owned particles
       for (std::size_t I = 0; I < md.n; ++I)
         if (md.owned[I])

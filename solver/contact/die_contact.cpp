@@ -66,8 +66,7 @@ void DieContact::add_to(State& st, const FixedScale& scale) const {
     for (int i = 0; i < 3; ++i) st.partial[3 * std::size_t(a.particle) + i] -= scale.fixed(a.normal_force[i] + a.friction_force[i]);
 }
 
-void DieContact::account(const Model& md, const State& st, const std::vector<double>& v_old, double dt_avg, double t) {
-  (void)md;
+void DieContact::account(const State& st, const std::vector<double>& v_old, double dt_avg, double t) {
   for (const auto& a : active_) {
     const DieMotion& mo = dies_[a.die].motion;
     const double rate = mo.rate(t);

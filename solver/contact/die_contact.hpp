@@ -36,7 +36,7 @@ class DieContact {
   double compute(const Model& md, const State& st, double t, double dt);
   void add_to(State& st, const FixedScale& scale) const;
   // After the velocity update: the work of this step's contact forces with vbar.
-  void account(const Model& md, const State& st, const std::vector<double>& v_old, double dt_avg, double t);
+  void account(const State& st, const std::vector<double>& v_old, double dt_avg, double t);
 
   const std::vector<DieTotals>& totals() const { return totals_; }
   std::vector<DieTotals>& totals() { return totals_; }  // restored from a checkpoint

@@ -4,7 +4,8 @@ import rkcase
 tools = rkcase.tools_from_argv()
 for prog in ("rkprep", "rksolve", "rkpost"):
     p = tools.run([tools.bin / prog, "--help"])
-    rkcase.check(prog in p.stdout and "--set" in p.stdout or prog == "rkpost", f"{prog} --help")
+    wants = [prog, "--quiet"] + (["--set"] if prog != "rkpost" else [])
+    rkcase.check(all(w in p.stdout for w in wants), f"{prog} --help names {', '.join(wants)}")
     p = tools.run([tools.bin / prog, "--version"])
     rkcase.check(p.stdout.startswith(f"{prog} (rkforge)"), f"{prog} --version: {p.stdout.strip()}")
 
