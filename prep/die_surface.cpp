@@ -40,7 +40,8 @@ Soup gmsh_boundary(const Die& die, double spacing) {
   } else {
     throw Error("die '" + die.name + "': " + die.cad + ": unsupported CAD format '" + ext + "'");
   }
-  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 64);  // chord sagitta 0.12 % of the radius
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 64);  // chord sagitta 0.12 % of the radius ...
+  gmsh::option::setNumber("Mesh.MeshSizeMin", 0.25 * h);  // ... or a quarter spacing: finer than the particles can feel
   gmsh::vectorpair volumes, surfaces;
   gmsh::model::getEntities(volumes, 3);
   if (volumes.empty())
@@ -111,9 +112,8 @@ DieSurface mesh_die(const Die& die, double spacing) {
 
 void check_workpiece_outside(const DieSurface& surface, const Die& die, const VolumeMesh& workpiece, double spacing) {
   const DieSearch search(surface, spacing);
-  std::vector<std::int32_t> scratch;
   for (std::size_t i = 0; i < workpiece.node_count(); ++i) {
-    const DieHit hit = search.nearest(&workpiece.X[3 * i], scratch);
+    const DieHit hit = search.nearest(&workpiece.X[3 * i]);
     if (hit.found && hit.gap < -0.05 * spacing) {  // touching within the die facets' chord error is fine
       std::ostringstream s;
       s << "die '" << die.name << "' (" << die.cad << "): the workpiece starts inside the die: particle " << i

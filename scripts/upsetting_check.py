@@ -2,7 +2,9 @@
 """Frictionless upsetting against the closed form (BENCHMARKS.md case 2).
 
 F = sigma(ep) A0 H0 / H with ep = ln(H0/H) - sigma/E (aluminium, seed Table 4), D = D0 sqrt(H0/H).
-Reads CASE/history.csv (die force, full part) and the last .vtu (diameter, via meshio).
+Reads CASE/history.csv (die force, full part) and the last .vtu (diameter, via meshio). The explicit
+contact force rings with the stress waves, so each force is the mean of the history rows within
++-1 % reduction of the point, against the mean of the closed form over the same rows.
   upsetting_check.py CASE [--json]
 """
 import csv
@@ -34,10 +36,12 @@ def check(case: Path):
     for red in (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7):
         if red > max_reduction + 1e-9:
             break
-        r = min(rows, key=lambda r: abs(float(r["die.stroke"]) - red * half))
-        f = float(r["die.force"])
-        out["force"].append({"reduction": red, "force_kN": f / 1e3, "exact_kN": exact_force(red) / 1e3,
-                             "error": f / exact_force(red) - 1})
+        near = [r for r in rows if abs(float(r["die.stroke"]) / half - red) <= 0.01 + 1e-9]
+        # (at the end of the run the window is one-sided)
+        f = np.mean([float(r["die.force"]) for r in near])
+        exact = np.mean([exact_force(float(r["die.stroke"]) / half) for r in near])
+        out["force"].append({"reduction": red, "force_kN": f / 1e3, "exact_kN": exact / 1e3, "error": f / exact - 1,
+                             "rows": len(near)})
     vtu = sorted((case / "vtk").glob("frame_*.vtu"))[-1]
     x = meshio.read(vtu).points
     height = 2 * x[:, 2].max()

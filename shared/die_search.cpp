@@ -1,5 +1,6 @@
 #include "die_search.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -7,17 +8,6 @@ namespace rk {
 namespace {
 
 inline double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-std::vector<double> centres(const DieSurface& s) {
-  std::vector<double> c;
-  for (std::size_t t = 0; t < s.triangles.size() / 3; ++t)
-    for (int d = 0; d < 3; ++d) {
-      double sum = 0;
-      for (int k = 0; k < 3; ++k) sum += s.vertices[3 * s.triangles[3 * t + k] + d];
-      c.push_back(sum / 3);
-    }
-  return c;
-}
 
 }  // namespace
 
@@ -58,39 +48,84 @@ void closest_point_on_triangle(const double p[3], const double a[3], const doubl
   for (int i = 0; i < 3; ++i) out[i] = a[i] + ab[i] * v + ac[i] * w;
 }
 
-DieSearch::DieSearch(const DieSurface& s, double margin)
-    : s_(s), centre_(centres(s)), grid_(nullptr, nullptr, 0) {
+DieSearch::DieSearch(const DieSurface& s, double margin) : s_(s) {
   const std::size_t nt = s.triangles.size() / 3;
+  margin_ = margin;
+  box_.resize(6 * nt);  // per triangle: lo[3], hi[3]
+  double hi[3], edges = 0;
+  for (int d = 0; d < 3; ++d) lo_[d] = std::numeric_limits<double>::infinity(), hi[d] = -lo_[d];
   for (std::size_t t = 0; t < nt; ++t) {
     const double* v[3] = {&s.vertices[3 * s.triangles[3 * t]], &s.vertices[3 * s.triangles[3 * t + 1]],
                           &s.vertices[3 * s.triangles[3 * t + 2]]};
-    double r = 0;
-    for (int k = 0; k < 3; ++k) {
-      double d2 = 0;
-      for (int i = 0; i < 3; ++i) d2 += (v[k][i] - centre_[3 * t + i]) * (v[k][i] - centre_[3 * t + i]);
-      r = std::max(r, std::sqrt(d2));
+    for (int d = 0; d < 3; ++d) {
+      box_[6 * t + d] = std::min({v[0][d], v[1][d], v[2][d]});
+      box_[6 * t + 3 + d] = std::max({v[0][d], v[1][d], v[2][d]});
+      lo_[d] = std::min(lo_[d], box_[6 * t + d] - margin);
+      hi[d] = std::max(hi[d], box_[6 * t + 3 + d] + margin);
     }
-    radius_.push_back(r + margin);
     double e1[3], e2[3], n[3];
     for (int i = 0; i < 3; ++i) e1[i] = v[1][i] - v[0][i], e2[i] = v[2][i] - v[0][i];
     n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
     const double len = std::sqrt(dot3(n, n));
     for (int i = 0; i < 3; ++i) normal_.push_back(len > 0 ? n[i] / len : 0.0);
+    edges += std::sqrt(dot3(e1, e1));
   }
-  grid_ = NeighbourGrid(centre_.data(), radius_.data(), nt);
+  if (nt == 0) {
+    start_.assign(2, 0);
+    return;
+  }
+  // Bin size: the mean edge or the margin, whichever is larger, with at most ~2^21 bins.
+  h_ = std::max(edges / double(nt), margin);
+  for (;;) {
+    for (int d = 0; d < 3; ++d) dims_[d] = std::max<std::int64_t>(1, std::int64_t((hi[d] - lo_[d]) / h_) + 1);
+    if (dims_[0] * dims_[1] * dims_[2] <= (std::int64_t(1) << 21)) break;
+    h_ *= 1.25;
+  }
+  start_.assign(dims_[0] * dims_[1] * dims_[2] + 1, 0);
+  auto each_bin = [&](std::size_t t, auto fn) {  // the bins the triangle's box grown by the margin touches
+    std::int64_t b0[3], b1[3];
+    for (int d = 0; d < 3; ++d) {
+      const double lo[3] = {box_[6 * t] - margin, box_[6 * t + 1] - margin, box_[6 * t + 2] - margin};
+      const double hi[3] = {box_[6 * t + 3] + margin, box_[6 * t + 4] + margin, box_[6 * t + 5] + margin};
+      b0[d] = bin(lo, d), b1[d] = bin(hi, d);
+    }
+    for (std::int64_t k = b0[2]; k <= b1[2]; ++k)
+      for (std::int64_t j = b0[1]; j <= b1[1]; ++j)
+        for (std::int64_t i = b0[0]; i <= b1[0]; ++i) fn((k * dims_[1] + j) * dims_[0] + i);
+  };
+  for (std::size_t t = 0; t < nt; ++t) each_bin(t, [&](std::int64_t b) { ++start_[b + 1]; });
+  for (std::size_t b = 1; b < start_.size(); ++b) start_[b] += start_[b - 1];
+  items_.resize(std::size_t(start_.back()));
+  std::vector<std::int32_t> fill(start_.begin(), start_.end() - 1);
+  for (std::size_t t = 0; t < nt; ++t) each_bin(t, [&](std::int64_t b) { items_[fill[b]++] = std::int32_t(t); });
 }
 
-DieHit DieSearch::nearest(const double x[3], std::vector<std::int32_t>& scratch) const {
-  scratch.clear();
-  grid_.covering(x, scratch);
+std::int64_t DieSearch::bin(const double x[3], int d) const {
+  return std::clamp<std::int64_t>(std::int64_t(std::floor((x[d] - lo_[d]) / h_)), 0, dims_[d] - 1);
+}
+
+DieHit DieSearch::nearest(const double x[3]) const {
   DieHit hit;
+  for (int d = 0; d < 3; ++d)
+    if (x[d] < lo_[d] || x[d] > lo_[d] + double(dims_[d]) * h_) return hit;  // beyond every triangle's margin
+  const std::int64_t b = (bin(x, 2) * dims_[1] + bin(x, 1)) * dims_[0] + bin(x, 0);
+
   double best = std::numeric_limits<double>::infinity(), best_point[3] = {0, 0, 0};
+  const double reach = margin_ * margin_;  // nothing beyond the margin counts
   double pseudo[3] = {0, 0, 0};
-  for (auto t : scratch) {
+  for (std::int32_t k = start_[b]; k < start_[b + 1]; ++k) {
+    const std::int32_t t = items_[k];
+    double box2 = 0;  // squared distance to the triangle's box: a lower bound, cheap to reject with
+    for (int d = 0; d < 3; ++d) {
+      const double out = std::max({box_[6 * t + d] - x[d], x[d] - box_[6 * t + 3 + d], 0.0});
+      box2 += out * out;
+    }
+    if (box2 > reach || (std::isfinite(best) && box2 > best * (1 + 1e-12) + 1e-18)) continue;
     double c[3];
     closest_point_on_triangle(x, &s_.vertices[3 * s_.triangles[3 * t]], &s_.vertices[3 * s_.triangles[3 * t + 1]],
                               &s_.vertices[3 * s_.triangles[3 * t + 2]], c);
     const double d2 = (x[0] - c[0]) * (x[0] - c[0]) + (x[1] - c[1]) * (x[1] - c[1]) + (x[2] - c[2]) * (x[2] - c[2]);
+    if (d2 > reach) continue;
     const double tol = std::isfinite(best) ? 1e-18 + 1e-12 * best : 0.0;
     if (!std::isfinite(best) || d2 < best - tol) {  // a strictly closer point: restart the pseudo-normal
       best = d2;
@@ -99,7 +134,7 @@ DieHit DieSearch::nearest(const double x[3], std::vector<std::int32_t>& scratch)
       for (int i = 0; i < 3; ++i) pseudo[i] += normal_[3 * t + i];
     }
   }
-  if (scratch.empty() || !std::isfinite(best)) return hit;
+  if (!std::isfinite(best)) return hit;
   const double len = std::sqrt(dot3(pseudo, pseudo));
   if (!(len > 0)) return hit;
   hit.found = true;

@@ -1,11 +1,12 @@
 // Closest-point queries against a rigid die surface (triangles with outward normals), in the die's
-// own frame: the dies only translate, so the bucket grid is built once and never refreshed.
+// own frame: the dies only translate, so the bucket grid is built once and never refreshed. Each
+// triangle is listed in every bin its box (grown by the search margin) touches, so a query reads one
+// bin however large the die's triangles are.
 // Used by rkprep (a workpiece must not start inside a die) and rksolve (particle-to-segment contact).
 #pragma once
 #include <cstdint>
 #include <vector>
 
-#include "neighbour_grid.hpp"
 #include "subdomain.hpp"
 
 namespace rk {
@@ -23,14 +24,18 @@ void closest_point_on_triangle(const double p[3], const double a[3], const doubl
 class DieSearch {
  public:
   DieSearch(const DieSurface& surface, double margin);
-  // `scratch` holds candidate triangles (reserve it once: then no allocation per query).
-  DieHit nearest(const double x[3], std::vector<std::int32_t>& scratch) const;
+  // The closest point among the triangles within the margin of x (no allocation).
+  DieHit nearest(const double x[3]) const;
   std::size_t triangles() const { return normal_.size() / 3; }
 
  private:
   const DieSurface& s_;
-  std::vector<double> centre_, radius_, normal_;
-  NeighbourGrid grid_;
+  std::vector<double> normal_, box_;  // per triangle: unit normal; lo[3], hi[3]
+  double margin_ = 0;
+  double lo_[3]{}, h_ = 1;
+  std::int64_t dims_[3]{1, 1, 1};
+  std::vector<std::int32_t> start_, items_;  // CSR: triangles per bin
+  std::int64_t bin(const double x[3], int d) const;
 };
 
 }  // namespace rk

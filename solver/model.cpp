@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "error.hpp"
@@ -62,6 +63,25 @@ void build_shape_functions(Model& md, const Subdomain& sub, const Scene& scene) 
   }
 }
 
+// The shortest reference edge of each cell (hexahedra: 12 edges, tetrahedra: 6), for the time step.
+std::vector<double> shortest_edges(const Model& md) {
+  static constexpr int kHex[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                      {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  static constexpr int kTet[12][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+  std::vector<double> h0(md.cells, std::numeric_limits<double>::infinity());
+  for (std::size_t c = 0; c < md.cells; ++c) {
+    const std::int32_t* nodes = &md.cell_nodes[md.cell_node_offsets[c]];
+    const bool hex = md.cell_node_offsets[c + 1] - md.cell_node_offsets[c] == 8;
+    for (int e = 0; e < (hex ? 12 : 6); ++e) {
+      const int a = nodes[hex ? kHex[e][0] : kTet[e][0]], b = nodes[hex ? kHex[e][1] : kTet[e][1]];
+      double d2 = 0;
+      for (int i = 0; i < 3; ++i) d2 += (md.X[3 * a + i] - md.X[3 * b + i]) * (md.X[3 * a + i] - md.X[3 * b + i]);
+      h0[c] = std::min(h0[c], std::sqrt(d2));
+    }
+  }
+  return h0;
+}
+
 }  // namespace
 
 Model build_model(const Subdomain& sub, const Scene& scene) {
@@ -95,6 +115,7 @@ Model build_model(const Subdomain& sub, const Scene& scene) {
     ++md.cell_points[sub.point_cell[g] + 1];
   }
   for (std::size_t c = 0; c < md.cells; ++c) md.cell_points[c + 1] += md.cell_points[c];
+  md.cell_h0 = shortest_edges(md);
   build_shape_functions(md, sub, scene);
 
   md.dies = sub.dies;

@@ -33,6 +33,7 @@ struct Model {
   // cells: their points are contiguous, cell_points[c]..cell_points[c+1]
   std::size_t cells = 0;
   std::vector<std::int32_t> cell_points, cell_node_offsets, cell_nodes;
+  std::vector<double> cell_h0;  // shortest reference edge, for the stable time step
 
   // points whose supports hold a shared particle (their forces are sent first) and the others,
   // whose work overlaps the messages

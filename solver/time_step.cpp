@@ -1,35 +1,45 @@
 #include "time_step.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace rk {
-namespace {
-constexpr int kHexEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
-                                  {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
-constexpr int kTetEdges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
-}  // namespace
+
+double smallest_stretch(const double F[9]) {
+  double C[6];  // xx, yy, zz, xy, yz, zx
+  const int a[6] = {0, 1, 2, 0, 1, 2}, b[6] = {0, 1, 2, 1, 2, 0};
+  for (int k = 0; k < 6; ++k)
+    C[k] = F[a[k]] * F[b[k]] + F[3 + a[k]] * F[3 + b[k]] + F[6 + a[k]] * F[6 + b[k]];
+  // eigenvalues of a symmetric 3x3 matrix by the trigonometric method (Smith 1961)
+  const double q = (C[0] + C[1] + C[2]) / 3;
+  const double off = C[3] * C[3] + C[4] * C[4] + C[5] * C[5];
+  const double d0 = C[0] - q, d1 = C[1] - q, d2 = C[2] - q;
+  const double p = std::sqrt((d0 * d0 + d1 * d1 + d2 * d2 + 2 * off) / 6);
+  if (!(p > 1e-14 * q)) return std::sqrt(std::max(q, 0.0));
+  const double B[6] = {d0 / p, d1 / p, d2 / p, C[3] / p, C[4] / p, C[5] / p};
+  const double detB = B[0] * (B[1] * B[2] - B[4] * B[4]) - B[3] * (B[3] * B[2] - B[4] * B[5]) +
+                      B[5] * (B[3] * B[4] - B[1] * B[5]);
+  const double phi = std::acos(std::clamp(detB / 2, -1.0, 1.0)) / 3;
+  const double smallest = q + 2 * p * std::cos(phi + 2 * M_PI / 3);
+  return std::sqrt(std::max(smallest, 0.0));
+}
 
 StableStep stable_time_step(const Model& md, const State& st, double cfl) {
   double dt = std::numeric_limits<double>::infinity();
   std::size_t which = 0;
   for (std::size_t c = 0; c < md.cells; ++c) {
-    const std::int32_t* nodes = &md.cell_nodes[md.cell_node_offsets[c]];
-    const bool hex = md.cell_node_offsets[c + 1] - md.cell_node_offsets[c] == 8;
-    const int count = hex ? 12 : 6;
-    double l2 = std::numeric_limits<double>::infinity();
-    for (int e = 0; e < count; ++e) {
-      const int a = nodes[hex ? kHexEdges[e][0] : kTetEdges[e][0]], b = nodes[hex ? kHexEdges[e][1] : kTetEdges[e][1]];
-      double d2 = 0;
-      for (int i = 0; i < 3; ++i) {
-        const double d = md.X[3 * a + i] + st.u[3 * a + i] - md.X[3 * b + i] - st.u[3 * b + i];
-        d2 += d * d;
-      }
-      l2 = std::min(l2, d2);
-    }
     const double c2 = md.wave_modulus * std::max(st.cell_J[c], 1e-12) / md.density;
-    const double dtc = std::sqrt(l2 / c2);
-    if (dtc < dt) dt = dtc, which = c;
+    const double scale = md.cell_h0[c] / std::sqrt(c2);  // dt of the cell = scale * stretch
+    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
+      const double* F = &st.F[9 * std::size_t(g)];
+      // Cheap lower bound first: lambda_min(C) >= det C / (lambda_mid lambda_max) >= 4 J^2 / (tr C)^2.
+      double trC = 0;
+      for (int k = 0; k < 9; ++k) trC += F[k] * F[k];
+      if (scale * 2 * std::abs(st.J[g]) / trC >= dt) continue;  // cannot set the step
+      const double dtg = scale * smallest_stretch(F);
+      if (dtg < dt) dt = dtg, which = c;
+    }
   }
   return {cfl * dt, which};
 }

@@ -1,6 +1,10 @@
-// Stable time step from the CURRENT configuration (the Taylor bar's falls > 20x while it mushrooms):
-// dt = CFL * min over cells of (shortest current cell edge) / (dilatational wave speed at the
-// cell's current density), c^2 = (K + 4G/3) / rho, rho = rho0 / Jbar.
+// Stable time step from the CURRENT deformation (the Taylor bar's falls > 20x while it mushrooms).
+// In total-Lagrangian RKPM the stiffness M^-1 K depends on the particles' motion only through F at
+// the integration points (grad_x N = grad_X N F^-1), so the step is measured there, not from how
+// close particles come (their coefficients may crowd without stiffening anything):
+//   dt = CFL * min over cells of h0_c * min_{g in c} sigma_min(F_g) / c_c,
+// h0_c the cell's shortest reference edge, sigma_min the smallest principal stretch, and
+// c_c^2 = (K + 4G/3) / rho the dilatational wave speed at the current density rho = rho0 / Jbar.
 #pragma once
 #include "model.hpp"
 #include "state.hpp"
@@ -13,5 +17,8 @@ struct StableStep {
 };
 
 StableStep stable_time_step(const Model& md, const State& st, double cfl);
+
+// Smallest principal stretch of F: sqrt of the smallest eigenvalue of C = F^T F (closed form).
+double smallest_stretch(const double F[9]);
 
 }  // namespace rk

@@ -10,8 +10,8 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
   double hmax = 0;
   for (std::size_t I = 0; I < md.n; ++I)
     if (md.surface[I] && md.owned[I]) slaves_.push_back(std::int32_t(I)), hmax = std::max(hmax, md.spacing[I]);
-  for (const auto& s : surfaces_) search_.push_back(std::make_unique<DieSearch>(s, hmax));
-  scratch_.reserve(4096);
+  // Penetrations stay far below half a spacing (the penalty is stiff); deeper ones would be missed.
+  for (const auto& s : surfaces_) search_.push_back(std::make_unique<DieSearch>(s, 0.5 * hmax));
   active_.reserve(slaves_.size() * std::max<std::size_t>(1, dies_.size()));
 }
 
@@ -29,7 +29,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     for (const auto I : slaves_) {
       double x[3];
       for (int i = 0; i < 3; ++i) x[i] = md.X[3 * I + i] + st.u[3 * I + i] - stroke * mo.direction[i];
-      const DieHit hit = search_[k]->nearest(x, scratch_);
+      const DieHit hit = search_[k]->nearest(x);
       if (!hit.found || hit.gap >= 0) continue;
       const double depth = -hit.gap;
       const double kI = penalty_scale_ * md.mass[I] / (dt * dt);

@@ -52,7 +52,6 @@ class DieContact {
   std::vector<DieSurface> surfaces_;
   std::vector<std::unique_ptr<DieSearch>> search_;
   std::vector<std::int32_t> slaves_;  // owned surface particles
-  std::vector<std::int32_t> scratch_;
   std::vector<Active> active_;        // reserved once: no allocation per step
   std::vector<DieTotals> totals_;
   double penalty_scale_;

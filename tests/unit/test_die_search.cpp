@@ -39,7 +39,6 @@ rk::DieSurface unit_cube() {  // [0,1]^3, 12 triangles, counter-clockwise seen f
 TEST(DieSearch, SignedGapOutsideInsideEdgesCorners) {
   const rk::DieSurface cube = unit_cube();
   const rk::DieSearch search(cube, 1.0);
-  std::vector<std::int32_t> scratch;
   struct Case {
     double x[3], gap, n[3];
   } cases[] = {
@@ -51,14 +50,14 @@ TEST(DieSearch, SignedGapOutsideInsideEdgesCorners) {
       {{1.2, 1.2, 1.2}, std::sqrt(0.12), {0, 0, 0}},  // beyond a corner
   };
   for (const auto& k : cases) {
-    const rk::DieHit hit = search.nearest(k.x, scratch);
+    const rk::DieHit hit = search.nearest(k.x);
     ASSERT_TRUE(hit.found);
     EXPECT_NEAR(hit.gap, k.gap, 1e-12) << k.x[0] << "," << k.x[1] << "," << k.x[2];
     if (k.n[0] || k.n[1] || k.n[2])
       for (int i = 0; i < 3; ++i) EXPECT_NEAR(hit.normal[i], k.n[i], 1e-12);
   }
   const double far[3] = {5, 5, 5};
-  EXPECT_FALSE(search.nearest(far, scratch).found) << "beyond the search margin";
+  EXPECT_FALSE(search.nearest(far).found) << "beyond the search margin";
 }
 
 }  // namespace
