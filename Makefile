@@ -14,7 +14,7 @@ DEMO  ?= $(BUILD)/demo/taylor_bar
 
 DEB_PACKAGES := build-essential cmake pkg-config libmetis-dev libsuitesparse-dev libeigen3-dev \
   libopenmpi-dev openmpi-bin libgmsh-dev libcgal-dev libhdf5-dev hdf5-tools libyaml-cpp-dev \
-  nlohmann-json3-dev libcli11-dev libgtest-dev python3-meshio python3-numpy python3-matplotlib
+  nlohmann-json3-dev libcli11-dev libgtest-dev python3-meshio python3-numpy python3-matplotlib python3-yaml
 
 export OMPI_ALLOW_RUN_AS_ROOT := 1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1

@@ -62,7 +62,7 @@ std::string describe_particle(const Model& md, const State& st, std::int32_t I) 
 std::vector<std::string> history_columns(const Scene& scene) {
   std::vector<std::string> c{"time",         "dt",          "kinetic",      "internal",      "plastic_work",
                              "external_work", "contact_work", "energy_error", "friction_work", "contacts",
-                             "max_penetration", "kinetic_internal_ratio"};
+                             "max_penetration", "kinetic_internal_ratio", "volume_change"};
   for (const auto& w : scene.rigid_walls) c.push_back(w.name + ".force");
   for (const auto& d : scene.dies)
     for (const char* q : {".stroke", ".force", ".fx", ".fy", ".fz", ".work"}) c.push_back(d.name + q);
@@ -115,7 +115,10 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   OverlapExchange exchange(md, 3);
   std::vector<double> v_old(st.v.size());
   std::vector<double> row(columns.size(), 0.0), wall_force(scene.rigid_walls.size(), 0.0);
-  std::vector<double> sums(4 + scene.rigid_walls.size() + 5 * scene.dies.size());  // see the history row
+  std::vector<double> sums(5 + scene.rigid_walls.size() + 5 * scene.dies.size());  // see the history row
+  double volume0 = 0;  // sum of the points' reference volumes (each point lives on one rank)
+  for (std::size_t g = 0; g < md.m; ++g) volume0 += md.weight[g];
+  comm.sum(&volume0, 1);
 
   const double t_end = scene.time.end, out_dt = scene.time.output_interval;
   const double hist_dt = t_end / 500;
@@ -223,10 +226,11 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       Energies e = compute_energies(md, st, v_old, comm);
       // Global sums for the row, laid out as: the scalars below, one force per rigid wall, then
       // (contacts, fx, fy, fz, press work) per die.
-      enum { kContacts, kSprings, kFriction, kDieWork, kScalars };
+      enum { kContacts, kSprings, kFriction, kDieWork, kVolume, kScalars };
       const std::size_t walls = wall_force.size(), die0 = kScalars + walls;
       std::fill(sums.begin(), sums.end(), 0.0);
       sums[kContacts] = double(contacts);
+      for (std::size_t g = 0; g < md.m; ++g) sums[kVolume] += md.weight[g] * st.J[g];
       for (std::size_t w = 0; w < walls; ++w) sums[kScalars + w] = wall_force[w];
       double pen = 0;
       for (std::size_t d = 0; d < dies.size(); ++d) {
@@ -246,7 +250,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       if (st.t > 0.05 * t_end) max_ke_ratio = std::max(max_ke_ratio, ratio);
       std::size_t c = 0;
       for (double v : {st.t, dt, e.kinetic, e.internal, e.plastic, e.external, e.contact, last_error, sums[kFriction],
-                       sums[kContacts], pen, ratio})
+                       sums[kContacts], pen, ratio, sums[kVolume] / volume0 - 1})
         row[c++] = v;
       for (std::size_t w = 0; w < walls; ++w) row[c++] = sums[kScalars + w];
       for (std::size_t d = 0; d < dies.size(); ++d) {

@@ -1,0 +1,174 @@
+#!/usr/bin/python3
+"""Forming results of a case with dies (back extrusion, wheel forging, upsetting): the numbers that
+decide a press and a die design, and the pictures that show them.
+
+  forming_report.py CASE [--json] [--stages N]
+
+Reads CASE/history.csv (die stroke and force, energies, volume change) and CASE/vtk/case.pvd (the
+merged frames from rkpost: workpiece = part 0, dies = parts 1, 2, ...). Writes
+  CASE/plots/force_stroke.png   press force (full part) against stroke, one curve per moving die
+  CASE/plots/energies.png       energy balance against time
+  CASE/plots/stages.png         sections through the first symmetry plane at N stages (like the
+                                seed's Figs. 11 and 16): particles coloured by plastic strain, dies grey
+and prints (or --json) the stroke reached, peak force, energy error and volume change.
+"""
+import csv
+import json
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import meshio  # noqa: E402
+import numpy as np  # noqa: E402
+import yaml  # noqa: E402
+
+
+def moving_dies(header):
+    return [c[: -len(".stroke")] for c in header if c.endswith(".stroke")]
+
+
+def summary(case: Path) -> dict:
+    rows = list(csv.DictReader(open(case / "history.csv")))
+    late = rows[len(rows) // 10:]  # after the start-up, where the energies are still tiny
+    out = {"time_s": float(rows[-1]["time"]), "steps_rows": len(rows),
+           "max_energy_error": max(float(r["energy_error"]) for r in late),
+           "final_energy_error": float(rows[-1]["energy_error"]),
+           "max_abs_volume_change": max(abs(float(r["volume_change"])) for r in rows),
+           "final_volume_change": float(rows[-1]["volume_change"]),
+           "friction_work_J": float(rows[-1]["friction_work"]),
+           "external_work_J": float(rows[-1]["contact_work"]), "dies": {}}
+    for d in moving_dies(rows[0].keys()):
+        stroke = np.array([float(r[d + ".stroke"]) for r in rows])
+        force = np.array([float(r[d + ".force"]) for r in rows])
+        out["dies"][d] = {"stroke_mm": 1e3 * stroke[-1], "peak_force_kN": 1e-3 * force.max(),
+                          "final_force_kN": 1e-3 * force[-1], "work_J": float(rows[-1][d + ".work"])}
+    return out
+
+
+def frames(case: Path):
+    """[(time, workpiece .vtu, [die .vtu, ...])] from the .pvd."""
+    by_time = {}
+    for d in ET.parse(case / "vtk" / "case.pvd").getroot().iter("DataSet"):
+        entry = by_time.setdefault(float(d.get("timestep")), [None, []])
+        path = case / "vtk" / d.get("file")
+        if d.get("part", "0") == "0":
+            entry[0] = path
+        else:
+            entry[1].append(path)
+    return [(t, w, dies) for t, (w, dies) in sorted(by_time.items()) if w is not None]
+
+
+def first_plane(case: Path):
+    """Point and unit normal of the first symmetry plane in scene.resolved.yaml, else y = 0."""
+    scene = yaml.safe_load((case / "scene.resolved.yaml").read_text())
+    planes = (scene.get("boundaries") or {}).get("symmetry_planes") or []
+    if not planes:
+        return np.zeros(3), np.array([0.0, 1.0, 0.0])
+    normal = np.array(planes[0]["normal"], dtype=float)
+    return np.array(planes[0]["point"], dtype=float), normal / np.linalg.norm(normal)
+
+
+def section(points, triangles, point, normal):
+    """Segments where the plane cuts the triangles."""
+    d = (points - point) @ normal
+    segs = []
+    for tri in triangles:
+        dd = d[tri]
+        if dd.min() > 0 or dd.max() < 0:
+            continue
+        cut = []
+        for a, b in ((0, 1), (1, 2), (2, 0)):
+            da, db = dd[a], dd[b]
+            if (da <= 0 < db) or (db <= 0 < da):
+                s = da / (da - db)
+                cut.append(points[tri[a]] + s * (points[tri[b]] - points[tri[a]]))
+        if len(cut) == 2:
+            segs.append(cut)
+    return segs
+
+
+def plots(case: Path, stages: int) -> None:
+    out = case / "plots"
+    out.mkdir(exist_ok=True)
+    rows = list(csv.DictReader(open(case / "history.csv")))
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for d in moving_dies(rows[0].keys()):
+        stroke = [1e3 * float(r[d + ".stroke"]) for r in rows]
+        if max(stroke) > 0:
+            ax.plot(stroke, [1e-3 * float(r[d + ".force"]) for r in rows], label=d)
+    ax.set_xlabel("stroke (mm)")
+    ax.set_ylabel("press force, full part (kN)")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(out / "force_stroke.png", dpi=120)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(6, 4))
+    t = [1e3 * float(r["time"]) for r in rows]
+    for key in ("kinetic", "internal", "plastic_work", "contact_work", "friction_work"):
+        ax.plot(t, [float(r[key]) for r in rows], label=key)
+    ax.set_xlabel("time (ms)")
+    ax.set_ylabel("energy (J), modeled part")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(out / "energies.png", dpi=120)
+    plt.close(fig)
+
+    all_frames = frames(case)
+    picks = sorted({round(k * (len(all_frames) - 1) / max(stages - 1, 1)) for k in range(stages)})
+    point, normal = first_plane(case)
+    axis = np.array([0.0, 0.0, 1.0])
+    fig, axes = plt.subplots(1, len(picks), figsize=(3.2 * len(picks), 4), sharey=True)
+    axes = np.atleast_1d(axes)
+    spacing = None
+    last = meshio.read(all_frames[picks[-1]][1]).point_data["eq_plastic_strain"].ravel()
+    vmax = max(float(last.max()), 1e-3)  # one colour scale for all stages
+    for a, k in zip(axes, picks):
+        t, wpath, dpaths = all_frames[k]
+        m = meshio.read(wpath)
+        x = np.asarray(m.points)
+        if spacing is None:
+            spacing = np.median(np.linalg.norm(x[1:] - x[:-1], axis=1))
+        near = np.abs((x - point) @ normal) < 0.3 * spacing
+        r = np.hypot(x[near, 0], x[near, 1])
+        sc = a.scatter(1e3 * r, 1e3 * x[near, 2], c=m.point_data["eq_plastic_strain"].ravel()[near], s=10,
+                       cmap="viridis", vmin=0, vmax=vmax)
+        for dp in dpaths:
+            dm = meshio.read(dp)
+            tris = next((c.data for c in dm.cells if c.type == "triangle"), None)
+            if tris is None:
+                continue
+            for s0, s1 in section(np.asarray(dm.points), tris, point, normal):
+                a.plot(1e3 * np.hypot([s0[0], s1[0]], [s0[1], s1[1]]), 1e3 * np.array([s0[2], s1[2]]),
+                       color="0.5", lw=0.8)
+        a.set_title(f"t = {1e3 * t:.3g} ms")
+        a.set_xlabel("r (mm)")
+        a.set_aspect("equal")
+    axes[0].set_ylabel("z (mm)")
+    fig.colorbar(sc, ax=list(axes), shrink=0.7, label="equivalent plastic strain")
+    fig.savefig(out / "stages.png", dpi=120, bbox_inches="tight")
+    plt.close(fig)
+
+
+if __name__ == "__main__":
+    case = Path(sys.argv[1])
+    stages = int(sys.argv[sys.argv.index("--stages") + 1]) if "--stages" in sys.argv else 4
+    res = summary(case)
+    plots(case, stages)
+    if "--json" in sys.argv:
+        print(json.dumps(res, indent=2))
+    else:
+        print(f"{case}: t = {1e3 * res['time_s']:.4g} ms, energy error {100 * res['final_energy_error']:.3f} % at the end, "
+              f"{100 * res['max_energy_error']:.3f} % at most after 10 % of the run, volume change {100 * res['final_volume_change']:+.3f} % "
+              f"(max |.| {100 * res['max_abs_volume_change']:.3f} %)")
+        for d, v in res["dies"].items():
+            if v["stroke_mm"] > 0:
+                print(f"  {d}: stroke {v['stroke_mm']:.3f} mm, force {v['final_force_kN']:.1f} kN at the end, "
+                      f"peak {v['peak_force_kN']:.1f} kN, work {v['work_J']:.1f} J (modeled part)")
+        print(f"  plots: {case / 'plots'}/force_stroke.png, energies.png, stages.png")
