@@ -1,0 +1,376 @@
+#!/usr/bin/python3
+"""The studies: which cases each one runs, how one case is prepared and solved, and the report.
+
+Driven by studies/Makefile (`make -C studies <name>`); by hand:
+  studies.py plan STUDY          write work/STUDY.mk (the case list and its prep dependencies)
+  studies.py prep KEY            rkprep one prepared discretization (shared by the cases that use it)
+  studies.py solve STUDY/CASE    rksolve (+ rkpost) one case, in its own folder
+  studies.py report STUDY        results/STUDY/{cases.csv, table.md, *.png}
+SMOKE=1 in the environment selects each study's two-point smoke version (tiny cases; `make test`).
+"""
+import csv
+import hashlib
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+sys.path.insert(0, str(ROOT / "scripts"))
+import taylor_metrics  # noqa: E402
+import upsetting_check  # noqa: E402
+
+SMOKE = os.environ.get("SMOKE", "0") == "1"
+OUT = Path(os.environ.get("STUDIES_OUT", HERE))  # where work/ and results/ go (tests: the build tree)
+WORK = OUT / ("work-smoke" if SMOKE else "work")
+RESULTS = OUT / ("results-smoke" if SMOKE else "results")
+BIN = Path(os.environ.get("BIN", ROOT / "build" / "bin"))
+TAYLOR = "taylor_bar/scene.yaml"  # scenes under geometry/
+TAYLOR_ELASTIC = "taylor_bar/scene_elastic.yaml"
+UPSET = "upsetting/scene.yaml"
+UPSET_FRICTION = "upsetting/scene_friction.yaml"
+# converged finite-element values at 80 us (BENCHMARKS.md case 1): the reference for the errors
+TAYLOR_REF = {"footprint_radius_mm": 7.22, "final_length_mm": 21.45}
+SEED_SPEEDUP = {2: 1.81, 4: 3.21, 8: 6.41, 16: 10.39, 32: 24.14}  # seed, Taylor bar (BENCHMARKS.md 6)
+MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+           "OMPI_MCA_rmaps_base_oversubscribe": "1"}
+
+
+class Case:
+    """One run: a scene, the prep-side settings (they key the shared prep), the solver-side settings."""
+
+    def __init__(self, name, scene, prep=(), solve=(), ranks=1, label=None, **tags):
+        self.name, self.scene, self.prep, self.solve, self.ranks = name, scene, list(prep), list(solve), ranks
+        self.label = label or name
+        self.tags = tags
+
+    @property
+    def prep_key(self):
+        text = json.dumps([self.scene, sorted(self.prep), self.ranks])
+        slug = "-".join([Path(self.scene).parent.name, *(s.split("=")[0].split(".")[-1] + s.split("=")[1] for s in sorted(self.prep)), f"r{self.ranks}"])
+        return slug.replace("=", "").replace("/", "_")[:60] + "-" + hashlib.sha1(text.encode()).hexdigest()[:8]
+
+
+def taylor(h_mm, end_us, *solve, ranks=1, prep=(), scene=TAYLOR, **tags):
+    return dict(scene=scene, prep=[f"discretization.spacing={h_mm}e-3", *prep],
+                solve=[f"time.end={end_us}e-6", f"time.output_interval={end_us / 4}e-6", *solve], ranks=ranks, **tags)
+
+
+def upsetting(h_mm, *solve, prep=(), scene=UPSET, **tags):
+    return dict(scene=scene, prep=[f"discretization.spacing={h_mm}e-3", *prep],
+                solve=["time.mass_scaling_dt=3e-7", "time.output_interval=1e-3", *solve], **tags)
+
+
+def convergence():
+    hs, end = ([1.6, 1.2], 20) if SMOKE else ([0.9, 0.6, 0.45, 0.3, 0.2], 80)
+    cases = [Case(f"taylor_h{h}", **taylor(h, end), h=h) for h in hs]
+    for h in ([3.0, 2.5] if SMOKE else [2.5, 2.0, 1.25, 0.8]):
+        solve = ["time.end=1.1e-3", "time.output_interval=1.1e-3"] if SMOKE else []
+        cases.append(Case(f"upsetting_h{h}", **upsetting(h, *solve), h=h))
+    return cases
+
+
+def tradeoffs():
+    h, end = (1.6, 20) if SMOKE else (0.9, 80)
+    knobs = [("default", [], [])]
+    if SMOKE:
+        knobs += [("cfl 0.25", [], ["time.cfl=0.25"])]
+    else:
+        knobs += [(f"dilation {a}", [f"discretization.dilation={a}"], []) for a in (1.5, 2.5, 3.0)]
+        knobs += [("kernel quartic", ["discretization.kernel=quartic_spline"], []),
+                  ("basis quadratic", ["discretization.basis=quadratic", "discretization.dilation=2.5"], []),
+                  ("gauss 1", ["discretization.gauss_order=1"], []), ("gauss 3", ["discretization.gauss_order=3"], []),
+                  ("no F-bar", ["discretization.volumetric=none"], [])]
+        knobs += [(f"cfl {c}", [], [f"time.cfl={c}"]) for c in (0.1, 0.25, 0.75, 0.9)]
+    cases = [Case("taylor_" + k.replace(" ", "_"), **taylor(h, end, *s, prep=p), label=k) for k, p, s in knobs]
+    for k in ([0.25] if SMOKE else [0.05, 0.1, 0.25, 0.5, 1.0]):
+        solve = ["time.end=1.1e-3", "time.output_interval=1.1e-3"] if SMOKE else []
+        cases.append(Case(f"upsetting_penalty{k}", **upsetting(3.0 if SMOKE else 2.0, f"contact.penalty_scale={k}",
+                                                                *solve), label=f"penalty {k}"))
+    return cases
+
+
+def stability():
+    h, end = (1.6, 10) if SMOKE else (1.2, 40)
+    knobs = [("cfl 1.0", [], ["time.cfl=1.0"]), ("cfl 2.0", [], ["time.cfl=2.0"])] if SMOKE else [
+        *[(f"cfl {c}", [], [f"time.cfl={c}"]) for c in (0.9, 1.0, 1.2, 1.5, 2.0)],
+        *[(f"dilation {a}", [f"discretization.dilation={a}"], []) for a in (1.5, 1.2, 1.0)],
+        *[(f"nu {nu}", [], [f"material.poisson_ratio={nu}"]) for nu in (0.45, 0.49, 0.499)],
+        *[(f"{v} m/s", [], [f"initial_conditions.velocity=[0,0,-{v}]"]) for v in (10, 100, 500, 1000)],
+        ("elastic 1e6 steps", [], ["initial_conditions.velocity=[1,0,0]", "time.end=5e-2",
+                                   "time.output_interval=1e-2", "output.checkpoint_steps=0"])]
+    return [Case("taylor_" + k.replace(" ", "_").replace("/", ""),
+                 **taylor(h, end, *s, prep=p, scene=TAYLOR_ELASTIC if "elastic" in k else TAYLOR), label=k)
+            for k, p, s in knobs]
+
+
+def features():
+    h, end = (1.6, 10) if SMOKE else (0.9, 20)
+    cases = [Case("taylor_j2", **taylor(h, end), label="J2 plasticity"),
+             Case("taylor_elastic", **taylor(h, end, "initial_conditions.velocity=[0,0,-227]", scene=TAYLOR_ELASTIC),
+                  label="elastic only")]
+    if not SMOKE:
+        cases.append(Case("taylor_output_often", **taylor(h, end, f"time.output_interval={end / 100}e-6"),
+                          label="output every 1 %"))
+        for k, scene in (("frictionless", UPSET), ("friction 0.12", UPSET_FRICTION)):
+            cases.append(Case("upsetting_" + k.replace(" ", "_").replace(".", ""),
+                              **upsetting(2.0, "time.end=1.5e-3", "time.output_interval=1.5e-3", scene=scene), label=k))
+        cases.append(Case("upsetting_mass_scaling_off", **upsetting(2.0, "time.mass_scaling_dt=0", "time.end=1.5e-3",
+                                                                    "time.output_interval=1.5e-3"), label="no mass scaling"))
+    return cases
+
+
+def scaling():
+    ranks = [int(r) for r in os.environ.get("RANKS", "1 2").split()]
+    h, end = (1.6, 5) if SMOKE else (0.6, 20)
+    return [Case(f"taylor_n{n}", **taylor(h, end, ranks=n), label=f"{n} ranks", n=n) for n in ranks]
+
+
+STUDIES = {f.__name__: f for f in (convergence, tradeoffs, stability, features, scaling)}
+
+
+def cases_of(study):
+    return {c.name: c for c in STUDIES[study]()}
+
+
+def run(args, cwd=None, check=True):
+    p = subprocess.run([str(a) for a in args], capture_output=True, text=True, cwd=cwd, env=dict(os.environ, **MPI_ENV))
+    if check and p.returncode != 0:
+        sys.exit(f"{' '.join(map(str, args))} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
+    return p
+
+
+def plan(study):
+    lines = []
+    targets = []
+    for c in STUDIES[study]():
+        target = f"$(WORK)/{study}/{c.name}/case.json"
+        targets.append(target)
+        lines.append(f"{target}: $(WORK)/prep/{c.prep_key}/prep.json")
+    WORK.mkdir(parents=True, exist_ok=True)
+    (WORK / f"{study}.mk").write_text(f"{study}_CASES := {' '.join(targets)}\n" + "\n".join(lines) + "\n")
+
+
+def find_case_by_prep_key(key):
+    for study in STUDIES:
+        for c in STUDIES[study]():
+            if c.prep_key == key:
+                return c
+    sys.exit(f"no study case uses the prep {key}")
+
+
+def prep(key):
+    c = find_case_by_prep_key(key)
+    out = WORK / "prep" / key
+    shutil.rmtree(out, ignore_errors=True)
+    args = [BIN / "rkprep", ROOT / "geometry" / c.scene, "--ranks", c.ranks, "--out", out, "--quiet"]
+    for s in c.prep:
+        args += ["--set", s]
+    p = run(args, check=False)
+    if p.returncode != 0:  # a refused discretization is a result too (stability: dilation below the minimum)
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "refused.txt").write_text(p.stderr.strip() or p.stdout.strip())
+        (out / "prep.json").write_text(json.dumps({"refused": True}))
+
+
+def solve(name):
+    study, case_name = name.split("/")
+    c = cases_of(study)[case_name]
+    prep_dir = WORK / "prep" / c.prep_key
+    out = WORK / study / c.name
+    shutil.rmtree(out, ignore_errors=True)
+    out.mkdir(parents=True)
+    result = {"study": study, "case": c.name, "label": c.label, "ranks": c.ranks, **c.tags,
+              "prep": c.prep, "solve": c.solve}
+    if (prep_dir / "refused.txt").exists():
+        said = [ln for ln in (prep_dir / "refused.txt").read_text().splitlines() if "error:" in ln]
+        result.update(verdict="refused by rkprep", message=(said or ["(no message)"])[0])
+    else:
+        for f in ("sub", "scene.resolved.yaml", "prep.json"):
+            (out / f).symlink_to(prep_dir / f)
+        args = ["mpirun", "-np", c.ranks, BIN / "rksolve", out, "--quiet"]
+        for s in c.solve:
+            args += ["--set", s]
+        p = run(args, check=False)
+        if p.returncode != 0:
+            said = [ln for ln in (p.stderr + p.stdout).splitlines() if "error:" in ln] or [p.stderr.strip()[-300:]]
+            result.update(verdict="stopped with a diagnostic", message=said[0])
+        else:
+            result["verdict"] = "completed"
+        if (out / "solve.json").exists():
+            s = json.loads((out / "solve.json").read_text())
+            result.update({k: s[k] for k in ("wall_s", "setup_s", "steps", "particles", "integration_points",
+                                             "ns_per_point_update", "energy_error", "peak_memory_mb_max_rank")})
+        prep_json = json.loads((prep_dir / "prep.json").read_text())
+        result["prep_s"] = prep_json.get("wall_s")
+        if (out / "results").exists():
+            run([BIN / "rkpost", out, "--quiet"], check=False)
+        if (out / "vtk" / "case.pvd").exists():
+            if c.scene.startswith("taylor_bar/"):
+                m = taylor_metrics.metrics(out)
+                result.update(m)
+                result["error"] = sum(abs(m[k] / v - 1) for k, v in TAYLOR_REF.items())
+            else:
+                u = upsetting_check.check(out)
+                result["force_errors"] = {f"{100 * f['reduction']:.0f}%": f["error"] for f in u["force"]}
+                result["error"] = max(abs(f["error"]) for f in u["force"]) if u["force"] else None
+                result["diameter_error"] = u["diameter_error"]
+            if result["verdict"] == "completed" and not result.get("finite", True):
+                result["verdict"] = "NON-FINITE OUTPUT"
+    (out / "case.json").write_text(json.dumps(result, indent=2))
+
+
+def fmt(v, digits=4):
+    if v is None:
+        return "-"
+    if isinstance(v, float):
+        return f"{v:.{digits}g}"
+    return str(v)
+
+
+def report(study):
+    rows = [json.loads((WORK / study / c.name / "case.json").read_text()) for c in STUDIES[study]()]
+    out = RESULTS / study
+    out.mkdir(parents=True, exist_ok=True)
+    keys = ["label", "verdict", "ranks", "particles", "steps", "wall_s", "ns_per_point_update", "energy_error",
+            "footprint_radius_mm", "final_length_mm", "max_eq_plastic_strain", "error", "diameter_error", "message"]
+    with open(out / "cases.csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["case"] + keys)
+        for r in rows:
+            w.writerow([r["case"]] + [r.get(k) for k in keys])
+    shown = [k for k in keys if k != "message" and any(r.get(k) is not None for r in rows)]
+    md = [f"# {study}", "", f"Machine: {os.uname().nodename}, {os.cpu_count()} cores; "
+          f"{'smoke version' if SMOKE else 'full study'}. Error: Taylor bar = |r_f/7.22 - 1| + |L_f/21.45 - 1| "
+          "(converged FE); upsetting = largest |force error| against the closed form at 10-50 % reduction.", "",
+          "| case | " + " | ".join(shown) + " |", "|---|" + "---|" * len(shown)]
+    for r in rows:
+        md.append(f"| {r['case']} | " + " | ".join(fmt(r.get(k)) for k in shown) + " |")
+    notes = [r for r in rows if r.get("message")]
+    if notes:
+        md += ["", "Diagnostics (the message each stopped or refused run gave):", ""]
+        md += [f"- {r['label']}: `{r['message'][:400]}`" for r in notes]
+    extra = globals().get(f"report_{study}")
+    if extra:
+        md += extra(rows, out)
+    (out / "table.md").write_text("\n".join(md) + "\n")
+    print("\n".join(md))
+
+
+def observed_order(rows, key):
+    """p from three successive resolutions h1 > h2 > h3: |f1 - f2| / |f2 - f3| = (h1/h2)^p for ratio-constant h."""
+    out = []
+    for a, b, c in zip(rows, rows[1:], rows[2:]):
+        d1, d2 = a.get(key), b.get(key)
+        if None in (d1, d2, c.get(key)) or abs(b[key] - c[key]) == 0:
+            continue
+        ratio = abs(a[key] - b[key]) / abs(b[key] - c[key])
+        h = (a["h"] / b["h"] + b["h"] / c["h"]) / 2
+        out.append(f"{b['h']}: {math.log(ratio) / math.log(h):.2f}" if ratio > 0 else f"{b['h']}: -")
+    return out
+
+
+def report_convergence(rows, out):
+    tay = [r for r in rows if r["case"].startswith("taylor") and r.get("footprint_radius_mm")]
+    ups = [r for r in rows if r["case"].startswith("upsetting") and r.get("error") is not None]
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    if tay:
+        for key in TAYLOR_REF:
+            ax[0].loglog([r["h"] for r in tay], [abs(r[key] / TAYLOR_REF[key] - 1) + 1e-6 for r in tay], "o-", label=key)
+    if ups:
+        ax[0].loglog([r["h"] for r in ups], [r["error"] for r in ups], "s-", label="upsetting force (max error)")
+    ax[0].set_xlabel("spacing h (mm)")
+    ax[0].set_ylabel("relative error")
+    ax[0].legend(fontsize=8)
+    ax[1].loglog([r["particles"] for r in tay], [r["wall_s"] for r in tay], "o-", label="Taylor bar, wall time")
+    ax[1].set_xlabel("particles")
+    ax[1].set_ylabel("wall time (s)")
+    ax[1].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out / "convergence.png", dpi=120)
+    plt.close(fig)
+    lines = ["", "![convergence](convergence.png)", ""]
+    for key in TAYLOR_REF:
+        lines.append(f"Observed order of {key} (at h, from three successive h): {', '.join(observed_order(tay, key)) or '-'}")
+    return lines
+
+
+def pareto(points):
+    """Indices of the points no other point beats in both error and time."""
+    front = []
+    for i, (e, t) in enumerate(points):
+        if not any((e2 <= e and t2 <= t) and (e2 < e or t2 < t) for j, (e2, t2) in enumerate(points) if j != i):
+            front.append(i)
+    return sorted(front, key=lambda i: points[i][1])
+
+
+def report_tradeoffs(rows, out):
+    tay = [r for r in rows if r["case"].startswith("taylor") and r.get("error") is not None and r.get("wall_s")]
+    lines = []
+    if not tay:
+        return lines
+    pts = [(r["error"], r["wall_s"]) for r in tay]
+    front = pareto(pts)
+    fig, ax = plt.subplots(figsize=(7, 5))
+    ax.scatter([p[1] for p in pts], [p[0] for p in pts], color="0.6")
+    for r in tay:
+        ax.annotate(r["label"], (r["wall_s"], r["error"]), fontsize=7)
+    ax.plot([pts[i][1] for i in front], [pts[i][0] for i in front], "r-o", label="Pareto front")
+    picks = {"fast": front[0], "accurate": min(front, key=lambda i: pts[i][0])}
+    picks["balanced"] = min(front, key=lambda i: (pts[i][0] / max(p[0] for p in pts) + 1e-9) *
+                            (pts[i][1] / max(p[1] for p in pts)))
+    for name, i in picks.items():
+        ax.annotate(name, (pts[i][1], pts[i][0]), xytext=(10, 10), textcoords="offset points", color="red",
+                    arrowprops={"arrowstyle": "->", "color": "red"})
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time (s)")
+    ax.set_ylabel("error (Taylor bar, vs converged FE)")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(out / "pareto.png", dpi=120)
+    plt.close(fig)
+    lines += ["", "![pareto](pareto.png)", "", "| pick | settings | error | wall time (s) |", "|---|---|---|---|"]
+    for name, i in picks.items():
+        lines.append(f"| {name} | {tay[i]['label']} | {tay[i]['error']:.4f} | {tay[i]['wall_s']:.1f} |")
+    return lines
+
+
+def report_scaling(rows, out):
+    ok = [r for r in rows if r.get("wall_s")]
+    if not ok:
+        return []
+    base = next((r for r in ok if r["ranks"] == 1), ok[0])
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ns = [r["ranks"] for r in ok]
+    ax.plot(ns, [base["wall_s"] / r["wall_s"] for r in ok], "o-", label="rkforge (this machine)")
+    ax.plot([1, *SEED_SPEEDUP], [1, *SEED_SPEEDUP.values()], "s--", label="seed, Taylor bar")
+    ax.plot([1, max(ns + [32])], [1, max(ns + [32])], "k:", label="ideal")
+    ax.set_xlabel("ranks")
+    ax.set_ylabel("speedup")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(out / "scaling.png", dpi=120)
+    plt.close(fig)
+    lines = ["", "![scaling](scaling.png)", "", "| ranks | wall (s) | speedup | efficiency | seed speedup |",
+             "|---|---|---|---|---|"]
+    for r in ok:
+        sp = base["wall_s"] / r["wall_s"]
+        lines.append(f"| {r['ranks']} | {r['wall_s']:.2f} | {sp:.2f} | {100 * sp / r['ranks']:.0f} % | "
+                     f"{SEED_SPEEDUP.get(r['ranks'], '-')} |")
+    return lines
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3 or sys.argv[1] not in ("plan", "prep", "solve", "report"):
+        sys.exit(__doc__)
+    {"plan": plan, "prep": prep, "solve": solve, "report": report}[sys.argv[1]](sys.argv[2])
