@@ -114,8 +114,11 @@ HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::str
   std::vector<std::string> keep;
   if (resume_time >= 0) {  // rows before the checkpoint survive a restart
     std::ifstream in(path);
-    std::string line;
-    std::getline(in, line);
+    std::string line, header;
+    for (std::size_t k = 0; k < columns.size(); ++k) header += (k ? "," : "") + columns[k];
+    if (std::getline(in, line) && line != header)  // rows of another layout would land under the wrong names
+      throw Error(path + ": written with other columns (\"" + line.substr(0, 80) +
+                  "...\"); move it away to restart into a new history");
     while (std::getline(in, line))
       if (std::strtod(line.c_str(), nullptr) < resume_time) keep.push_back(line);
   }

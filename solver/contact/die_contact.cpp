@@ -9,7 +9,7 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
     : dies_(scene.dies), surfaces_(surfaces), totals_(scene.dies.size()), penalty_scale_(scene.contact.penalty_scale) {
   double hmax = 0;
   for (std::size_t I = 0; I < md.n; ++I)
-    if (md.surface[I] && md.owned[I]) slaves_.push_back(std::int32_t(I)), hmax = std::max(hmax, md.spacing[I]);
+    if (md.owned[I]) slaves_.push_back(std::int32_t(I)), hmax = std::max(hmax, md.spacing[I]);
   // Penetrations stay far below half a spacing (the penalty is stiff); deeper ones would be missed.
   for (const auto& s : surfaces_) search_.push_back(std::make_unique<DieSearch>(s, 0.5 * hmax));
   active_.reserve(slaves_.size() * std::max<std::size_t>(1, dies_.size()));

@@ -1,4 +1,6 @@
-// Particle-to-segment contact of the surface (slave) particles with the moving rigid dies (seed 4.3).
+// Particle-to-segment contact of the particles with the moving rigid dies (seed 4.3). Every owned
+// particle is a slave, not only those on the initial surface: in forging the material folds and
+// interior particles reach the dies (a bin lookup is all a particle far from the dies costs).
 // Normal: penalty k_I = penalty_scale * m_I / dt^2 on the penetration depth (tied to the stable step,
 // so contact never shrinks it: sqrt(k/m) dt = sqrt(penalty_scale) < 2). Tangential: Coulomb friction,
 // stick when the force that stops the relative tangential velocity in one step is within mu |f_n|,
@@ -51,7 +53,7 @@ class DieContact {
   std::vector<Die> dies_;
   std::vector<DieSurface> surfaces_;
   std::vector<std::unique_ptr<DieSearch>> search_;
-  std::vector<std::int32_t> slaves_;  // owned surface particles
+  std::vector<std::int32_t> slaves_;  // owned particles
   std::vector<Active> active_;        // reserved once: no allocation per step
   std::vector<DieTotals> totals_;
   double penalty_scale_;

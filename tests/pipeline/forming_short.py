@@ -46,10 +46,17 @@ for angle in (30, 60):
     rkcase.check(on.sum() > 10 and moved > 1e-5 and off < 1e-12,
                  f"wheel sector: the {on.sum()} particles of the {angle}-degree cut face moved up to "
                  f"{1e3 * moved:.3f} mm and stayed on its plane within {off:.1e} m")
+# the punch face (15 < r < 40 mm) is at z = 40 mm - stroke: no particle may sit above it
+r1 = np.hypot(x1[:, 0], x1[:, 1])
+under = (r1 > 15.5e-3) & (r1 < 39.5e-3)
+top = x1[under, 2].max()
+rkcase.check(top < 39.7e-3 + 1e-5, f"wheel: no particle inside the punch (highest under its face: z = {1e3 * top:.4f} mm, "
+             f"face at 39.7 mm)")
 report = subprocess.run(["/usr/bin/python3", rkcase.ROOT / "scripts" / "forming_report.py", c, "--json"],
                         capture_output=True, text=True, check=True)
 res = json.loads(report.stdout)
 print(json.dumps(res, indent=2))
+rkcase.check(res["max_penetration_mm"] < 0.01, f"deepest penetration {res['max_penetration_mm']:.4f} mm < 0.01 mm")
 rkcase.check(abs(res["dies"]["punch"]["stroke_mm"] - 0.3) < 1e-9, "punch stroke 0.3 mm at 30 us (10 m/s)")
 rkcase.check(res["dies"]["punch"]["peak_force_kN"] > 0, f"punch force {res['dies']['punch']['peak_force_kN']:.0f} kN")
 rkcase.check(res["max_abs_volume_change"] < 0.005, f"volume change {100 * res['max_abs_volume_change']:.3f} % < 0.5 %")
