@@ -14,6 +14,7 @@ import json
 import math
 import os
 import shutil
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -30,6 +31,7 @@ import taylor_metrics  # noqa: E402
 import upsetting_check  # noqa: E402
 
 SMOKE = os.environ.get("SMOKE", "0") == "1"
+DRIFT_END = float(os.environ.get("DRIFT_END", "5e-2"))  # s; about 1e6 steps of the stability study's bar
 OUT = Path(os.environ.get("STUDIES_OUT", HERE))  # where work/ and results/ go (tests: the build tree)
 WORK = OUT / ("work-smoke" if SMOKE else "work")
 RESULTS = OUT / ("results-smoke" if SMOKE else "results")
@@ -106,7 +108,7 @@ def stability():
         *[(f"dilation {a}", [f"discretization.dilation={a}"], []) for a in (1.5, 1.2, 1.0)],
         *[(f"nu {nu}", [], [f"material.poisson_ratio={nu}"]) for nu in (0.45, 0.49, 0.499)],
         *[(f"{v} m/s", [], [f"initial_conditions.velocity=[0,0,-{v}]"]) for v in (10, 100, 500, 1000)],
-        ("elastic 1e6 steps", [], ["initial_conditions.velocity=[1,0,0]", "time.end=5e-2",
+        (f"elastic {DRIFT_END:g} s", [], ["initial_conditions.velocity=[1,0,0]", f"time.end={DRIFT_END}",
                                    "time.output_interval=1e-2", "output.checkpoint_steps=0"])]
     return [Case("taylor_" + k.replace(" ", "_").replace("/", ""),
                  **taylor(h, end, *s, prep=p, scene=TAYLOR_ELASTIC if "elastic" in k else TAYLOR), label=k)
@@ -142,8 +144,21 @@ def cases_of(study):
     return {c.name: c for c in STUDIES[study]()}
 
 
-def run(args, cwd=None, check=True):
-    p = subprocess.run([str(a) for a in args], capture_output=True, text=True, cwd=cwd, env=dict(os.environ, **MPI_ENV))
+CASE_TIMEOUT = float(os.environ.get("CASE_TIMEOUT", "900"))  # s of wall time per run; longer is a verdict
+
+
+def run(args, cwd=None, check=True, timeout=None):
+    # own process group, so a run past its time limit is stopped with all of mpirun's ranks
+    proc = subprocess.Popen([str(a) for a in args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=cwd,
+                            env=dict(os.environ, **MPI_ENV), start_new_session=True)
+    try:
+        out, err = proc.communicate(timeout=timeout)
+        p = subprocess.CompletedProcess(args, proc.returncode, out, err)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.communicate()
+        return subprocess.CompletedProcess(args, 124, "", f"error: exceeded the study's CASE_TIMEOUT = {timeout:g} s "
+                                                        "of wall time (the stable step kept falling)")
     if check and p.returncode != 0:
         sys.exit(f"{' '.join(map(str, args))} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
     return p
@@ -200,8 +215,10 @@ def solve(name):
         args = ["mpirun", "-np", c.ranks, BIN / "rksolve", out, "--quiet"]
         for s in c.solve:
             args += ["--set", s]
-        p = run(args, check=False)
-        if p.returncode != 0:
+        p = run(args, check=False, timeout=CASE_TIMEOUT)
+        if p.returncode == 124:
+            result.update(verdict="exceeded the time limit", message=p.stderr)
+        elif p.returncode != 0:
             said = [ln for ln in (p.stderr + p.stdout).splitlines() if "error:" in ln] or [p.stderr.strip()[-300:]]
             result.update(verdict="stopped with a diagnostic", message=said[0])
         else:
