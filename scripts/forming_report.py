@@ -103,6 +103,16 @@ def section(points, triangles, point, normal):
     return segs
 
 
+def finish(fig, ax, xlabel, ylabel, path):
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
 def plots(case: Path, stages: int) -> None:
     out = case / "plots"
     out.mkdir(exist_ok=True)
@@ -117,25 +127,13 @@ def plots(case: Path, stages: int) -> None:
             line, = ax.plot(stroke, force, alpha=0.3, lw=0.8)
             ax.plot(stroke[k // 2: len(stroke) - k // 2], mean[k // 2: len(stroke) - k // 2], color=line.get_color(),
                     label=f"{d} (running mean)")
-    ax.set_xlabel("stroke (mm)")
-    ax.set_ylabel("press force, full part (kN)")
-    ax.grid(alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    fig.savefig(out / "force_stroke.png", dpi=120)
-    plt.close(fig)
+    finish(fig, ax, "stroke (mm)", "press force, full part (kN)", out / "force_stroke.png")
 
     fig, ax = plt.subplots(figsize=(6, 4))
     t = [1e3 * float(r["time"]) for r in rows]
     for key in ("kinetic", "internal", "plastic_work", "contact_work", "friction_work"):
         ax.plot(t, [float(r[key]) for r in rows], label=key)
-    ax.set_xlabel("time (ms)")
-    ax.set_ylabel("energy (J), modeled part")
-    ax.grid(alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    fig.savefig(out / "energies.png", dpi=120)
-    plt.close(fig)
+    finish(fig, ax, "time (ms)", "energy (J), modeled part", out / "energies.png")
 
     all_frames = frames(case)
     picks = sorted({round(k * (len(all_frames) - 1) / max(stages - 1, 1)) for k in range(stages)})
