@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <sstream>
 #include <unordered_map>
 
 #include "error.hpp"
@@ -21,6 +22,23 @@ std::string lower_extension(const std::string& path) {
 }
 
 namespace {
+
+// A part whose size in spacings is absurd was almost always given in another unit (a part in mm
+// read as metres is 1000x too big): refuse it before meshing, naming the size and the unit.
+void check_size(const MeshRequest& r) {
+  double lo[3], hi[3];
+  gmsh::model::getBoundingBox(-1, -1, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+  double extent = 0;  // largest side of the box, metres
+  for (int d = 0; d < 3; ++d) extent = std::max(extent, (hi[d] - lo[d]) * r.unit);
+  const double across = extent / r.spacing;
+  if (across > 5000 || across < 2) {
+    std::ostringstream s;
+    s << r.cad << ": the part is " << extent << " m across with geometry.unit = " << r.unit
+      << " m per CAD unit, which is " << across << " particle spacings of " << r.spacing
+      << " m; check geometry.unit (and discretization.spacing)";
+    throw Error(s.str());
+  }
+}
 
 VolumeMesh mesh_with_gmsh(const MeshRequest& r) {
   const std::string ext = lower_extension(r.cad);
@@ -56,6 +74,7 @@ VolumeMesh mesh_with_gmsh(const MeshRequest& r) {
     std::string why = GmshSession::errors();
     throw Error(r.cad + ": the CAD holds no closed solid (no volume to mesh)" + (why.empty() ? "" : ": " + why));
   }
+  check_size(r);
   gmsh::model::mesh::generate(3);
 
   std::vector<int> types;

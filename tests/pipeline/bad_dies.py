@@ -1,5 +1,6 @@
-"""Bad die input is one clear error naming the die, with a non-zero exit: a missing die CAD file, a
-die that is not a closed solid, and a workpiece that starts inside a die."""
+"""Bad CAD input is one clear error naming the die or the file, with a non-zero exit: a missing die
+CAD file, a die that is not a closed solid, a workpiece that starts inside a die, a missing workpiece
+CAD, and a workpiece given in the wrong unit (millimetres read as metres, refused before meshing)."""
 import rkcase
 
 tools = rkcase.tools_from_argv()
@@ -26,3 +27,12 @@ expect(scene_with_die("sunk", 'SetFactory("OpenCASCADE");\nBox(1) = {-2, -2, 9, 
        "the workpiece starts inside the die", "workpiece inside the die")
 expect(scene_with_die("open", 'SetFactory("OpenCASCADE");\nRectangle(1) = {-2, -2, 10, 20, 20};\n'),
        "no closed solid", "die that is only a surface")
+
+scene = rkcase.TAYLOR
+for sets, needle, what in ((["geometry.unit=m"], "the part is 32.4 m across with geometry.unit = 1 m per CAD unit",
+                            "Taylor bar in mm read as metres"),
+                           ([f"geometry.cad={w / 'nothing.step'}"], "nothing.step: CAD file not found",
+                            "missing workpiece CAD")):
+    p = tools.prep(tools.case("bad_cad_case"), 1, scene=scene, sets=sets, expect_ok=False, timeout=60)
+    rkcase.check(p.returncode != 0 and needle in p.stderr and p.stderr.count("error:") == 1,
+                 f"{what}: {p.stderr.strip()}")
