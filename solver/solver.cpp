@@ -116,6 +116,12 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   std::vector<double> v_old(st.v.size());
   std::vector<double> row(columns.size(), 0.0), wall_force(scene.rigid_walls.size(), 0.0);
   std::vector<double> sums(5 + scene.rigid_walls.size() + 5 * scene.dies.size());  // see the history row
+  double part_lo[3] = {1e300, 1e300, 1e300}, part_hi[3] = {1e300, 1e300, 1e300};  // the part's initial box
+  for (std::size_t I = 0; I < md.n; ++I)
+    for (int d = 0; d < 3; ++d) part_lo[d] = std::min(part_lo[d], md.X[3 * I + d]), part_hi[d] = std::min(part_hi[d], -md.X[3 * I + d]);
+  comm.min(part_lo, 3);
+  comm.min(part_hi, 3);
+  for (double& v : part_hi) v = -v;
   double volume0 = 0;  // sum of the points' reference volumes (each point lives on one rank)
   for (std::size_t g = 0; g < md.m; ++g) volume0 += md.weight[g];
   comm.sum(&volume0, 1);
@@ -264,6 +270,27 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       }
       collectively(comm, [&] { return history ? (history->write(row), 0) : 0; });  // a full disk stops all ranks
       next_history += hist_dt;
+      if (!dies.empty()) {  // a particle that has left the tools' box: the run went wrong
+        double lo[3], hi[3];
+        dies.box(part_lo, part_hi, st.t, lo, hi);
+        std::size_t out = md.n;
+        for (std::size_t I = 0; I < md.n && out == md.n; ++I)
+          for (int d = 0; d < 3; ++d) {
+            const double x = md.X[3 * I + d] + st.u[3 * I + d];
+            if (md.owned[I] && !(x >= lo[d] && x <= hi[d])) out = I;
+          }
+        double escaped = out < md.n ? 1.0 : 0.0;
+        comm.max(&escaped, 1);
+        if (escaped > 0) {
+          write_frame(st.v);
+          std::ostringstream why;
+          if (out < md.n)
+            why << describe_particle(md, st, std::int32_t(out)) << " has left the box of the part and the dies ("
+                << lo[0] << ", " << lo[1] << ", " << lo[2] << ") - (" << hi[0] << ", " << hi[1] << ", " << hi[2]
+                << ") m at step " << st.step << ", t = " << st.t << " s (last frame written)";
+          comm.check(out == md.n, why.str());
+        }
+      }
       // Runaway check; skipped in the first 10 % of the run, where the energies are still tiny and the
       // first-order work of freshly engaged contacts dominates their ratio.
       if (last_error > scene.health.max_energy_error && st.t > 0.1 * t_end) {

@@ -13,6 +13,12 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
   // Penetrations stay far below half a spacing (the penalty is stiff); deeper ones would be missed.
   for (const auto& s : surfaces_) search_.push_back(std::make_unique<DieSearch>(s, 0.5 * hmax));
   active_.reserve(slaves_.size() * std::max<std::size_t>(1, dies_.size()));
+  for (const auto& sf : surfaces_) {
+    double b[6] = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
+    for (std::size_t v = 0; v < sf.vertices.size() / 3; ++v)
+      for (int d = 0; d < 3; ++d) b[d] = std::min(b[d], sf.vertices[3 * v + d]), b[3 + d] = std::max(b[3 + d], sf.vertices[3 * v + d]);
+    die_box_.insert(die_box_.end(), b, b + 6);
+  }
 }
 
 double DieContact::compute(const Model& md, const State& st, double t, double dt) {
@@ -59,6 +65,19 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     }
   }
   return largest;
+}
+
+void DieContact::box(const double part_lo[3], const double part_hi[3], double t, double lo[3], double hi[3]) const {
+  for (int d = 0; d < 3; ++d) lo[d] = part_lo[d], hi[d] = part_hi[d];
+  for (std::size_t k = 0; k < dies_.size(); ++k) {
+    const double shift = dies_[k].motion.stroke(t);
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], die_box_[6 * k + d] + shift * dies_[k].motion.direction[d]);
+      hi[d] = std::max(hi[d], die_box_[6 * k + 3 + d] + shift * dies_[k].motion.direction[d]);
+    }
+  }
+  const double grow = 0.25 * std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  for (int d = 0; d < 3; ++d) lo[d] -= grow, hi[d] += grow;
 }
 
 void DieContact::add_to(State& st, const FixedScale& scale) const {

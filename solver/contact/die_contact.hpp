@@ -40,6 +40,10 @@ class DieContact {
   // After the velocity update: the work of this step's contact forces with vbar.
   void account(const State& st, const std::vector<double>& v_old, double dt_avg, double t);
 
+  // The box the part may move in: its initial box joined with every die's box at time t, grown by a
+  // quarter of its largest side. A particle outside has left the tools (a health check).
+  void box(const double part_lo[3], const double part_hi[3], double t, double lo[3], double hi[3]) const;
+
   const std::vector<DieTotals>& totals() const { return totals_; }
   std::vector<DieTotals>& totals() { return totals_; }  // restored from a checkpoint
   const Die& die(std::size_t k) const { return dies_[k]; }
@@ -56,6 +60,7 @@ class DieContact {
   std::vector<std::int32_t> slaves_;  // owned particles
   std::vector<Active> active_;        // reserved once: no allocation per step
   std::vector<DieTotals> totals_;
+  std::vector<double> die_box_;  // per die at t = 0: lo[3], hi[3]
   double penalty_scale_;
 };
 

@@ -25,3 +25,9 @@ rkcase.check(abs(speed[3]) < 0.05, f"at rest after the stop time: {speed[3]:.4f}
 rkcase.check(abs(slide[3] / (v0 * v0 / (2 * mu * g)) - 1) < 0.05,
              f"total slide {1e3 * slide[3]:.4f} mm (closed form 1.0000 mm, 5 %)")
 rkcase.check(abs(slide[3] - slide[2]) < 0.05 * slide[3], "sticks once stopped")
+
+# Health check: with the body force reversed the block flies off the floor; the run stops with the
+# particle that left the box of the part and the dies, and a last frame to look at.
+p = tools.solve(case, 1, sets=["loads.gravity=[0,0,1e6]"], expect_ok=False)
+rkcase.check(p.returncode != 0 and "has left the box of the part and the dies" in p.stderr and "particle " in p.stderr
+             and "(last frame written)" in p.stderr, f"a particle leaving the tools stops the run: {p.stderr.strip()[:200]}")
