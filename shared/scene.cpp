@@ -397,6 +397,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
   {
     Section o = top.section("output");
     s.output.checkpoint_steps = o.integer("checkpoint_steps", int(s.output.checkpoint_steps), 0, 1000000000);
+    s.output.checkpoint_minutes = o.number("checkpoint_minutes", s.output.checkpoint_minutes, {0, 1e6});
     o.done();
   }
   {

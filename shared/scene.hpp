@@ -97,6 +97,7 @@ struct Scene {
 
   struct Output {
     std::int64_t checkpoint_steps = 5000;  // steps between checkpoints (0: only at the end)
+    double checkpoint_minutes = 0;         // wall-clock minutes between checkpoints (0: off)
   } output;
 
   struct Health {

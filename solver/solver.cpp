@@ -135,6 +135,8 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   double& max_ke_ratio = clock.max_ke_ratio;
   const double kinetic0 = clock.kinetic0;
   PhaseTimer timer;
+  bool checkpoint_due = false;
+  double last_checkpoint_wall = comm.wtime();
   const double setup_s = comm.wtime() - wall0;
   double last_progress = comm.wtime();
   const bool terminal = ::isatty(::fileno(stdout)) != 0;
@@ -148,7 +150,9 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     timer.start();
     const bool last = st.t >= t_end * (1 - 1e-12);
     const auto every = scene.output.checkpoint_steps;
-    if ((every > 0 && st.step % every == 0 && st.step > first_step) || last) {  // state at t^n, v^{n-1/2}
+    if ((every > 0 && st.step % every == 0 && st.step > first_step) || last || checkpoint_due) {  // t^n, v^{n-1/2}
+      checkpoint_due = false;
+      last_checkpoint_wall = comm.wtime();
       clock.frames = results->frames();
       collectively(comm, [&] { return write_checkpoint(opt.case_dir, md, st, clock, dies.totals()), 0; });
       timer.stop(kOutput);
@@ -164,8 +168,12 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     for (std::size_t g = 0; g < md.m; ++g) bound = std::max(bound, st.force_bound[g]);
     const bool healthy = health.ok && std::isfinite(bound);
     const StableStep stable = stable_time_step(md, st, scene.time.cfl);
-    double red[3] = {-stable.dt, bound, healthy ? 0.0 : 1.0};
-    comm.max(red, 3);
+    // rank 0's clock decides whether a wall-clock checkpoint is due (written at the next step's top)
+    const bool clock_due = comm.rank() == 0 && scene.output.checkpoint_minutes > 0 &&
+                           comm.wtime() - last_checkpoint_wall >= 60 * scene.output.checkpoint_minutes;
+    double red[4] = {-stable.dt, bound, healthy ? 0.0 : 1.0, clock_due ? 1.0 : 0.0};
+    comm.max(red, 4);
+    checkpoint_due = red[3] > 0;
     timer.stop(kTimeStep);
     if (-red[0] < scene.health.min_dt_ratio * dt0) {  // a cell has collapsed: the run would never end
       write_frame(st.v);

@@ -71,3 +71,17 @@ rkcase.check(job.returncode != 0, f"a killed rank stops the job (exit {job.retur
 tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", killed, "--quiet", "--restart"] +
           sum((["--set", s] for s in long), []))
 rkcase.check(same(final(whole), final(killed)), "restarted after SIGKILL: final state bitwise equal to the uninterrupted run")
+
+# Wall-clock checkpoints: with step checkpoints off, a checkpoint still appears while the run goes on.
+clock = copy("clock_checkpoint")
+args = ["mpirun", "-np", "2", str(tools.bin / "rksolve"), str(clock), "--quiet", "--set", "time.end=16e-6",
+        "--set", "output.checkpoint_steps=0", "--set", "output.checkpoint_minutes=0.002"]
+job = subprocess.Popen(args, env=tools.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+ckpt = clock / "checkpoint" / "rank_0000.h5"
+deadline = time.time() + 120
+while not ckpt.exists() and time.time() < deadline and job.poll() is None:
+    time.sleep(0.02)
+running = job.poll() is None
+job.wait(timeout=300)
+rkcase.check(running and ckpt.exists() and job.returncode == 0,
+             "output.checkpoint_minutes = 0.002 (0.12 s): a checkpoint was written while the run was going")
