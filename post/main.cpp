@@ -27,13 +27,22 @@ struct Frame {
 
 void append(std::vector<double>& to, const std::vector<double>& from) { to.insert(to.end(), from.begin(), from.end()); }
 
-Frame read_frame(const std::vector<std::unique_ptr<rk::H5File>>& files, int f) {
+// CASE/results/rank_NNNN/frame_FFFFF.h5 (one file per rank and frame, written whole or not at all)
+std::string frame_file(const std::string& case_dir, int rank, int frame) {
+  char name[64];
+  std::snprintf(name, sizeof name, "/results/rank_%04d/frame_%05d.h5", rank, frame);
+  return case_dir + name;
+}
+
+Frame read_frame(const std::string& case_dir, int ranks, int f) {
   Frame fr;
   char group[32];
   std::snprintf(group, sizeof group, "frames/%05d/", f);
   const std::string g(group);
-  for (std::size_t r = 0; r < files.size(); ++r) {
-    const auto& h = *files[r];
+  for (int r = 0; r < ranks; ++r) {
+    const std::string path = frame_file(case_dir, r, f);
+    if (!fs::exists(path)) throw rk::Error(path + ": missing (the rank did not write this frame)");
+    const rk::H5File h(path, rk::H5File::Mode::read);
     fr.time = h.read<double>(g + "time")[0];
     auto gid = h.read<std::int64_t>(g + "global_id");
     fr.rank.insert(fr.rank.end(), gid.size(), std::int64_t(r));
@@ -82,13 +91,16 @@ int run(int argc, char** argv) {
   std::ifstream prep_file(case_dir + "/prep.json");
   if (!prep_file) throw rk::Error(case_dir + "/prep.json: not found (is this a case directory written by rkprep?)");
   const int ranks = nlohmann::json::parse(prep_file)["ranks"].get<int>();
-  std::vector<std::unique_ptr<rk::H5File>> files;
-  std::int64_t frames = 0;
+  std::int64_t frames = 0;  // the highest frame any rank wrote, plus one
   for (int r = 0; r < ranks; ++r) {
-    char name[40];
-    std::snprintf(name, sizeof name, "/results/rank_%04d.h5", r);
-    files.push_back(std::make_unique<rk::H5File>(case_dir + name, rk::H5File::Mode::read));
-    frames = std::max(frames, files.back()->attr_int("frames"));
+    const std::string dir = fs::path(frame_file(case_dir, r, 0)).parent_path().string();
+    if (!fs::is_directory(dir)) throw rk::Error(dir + ": not found (has rksolve run on this case?)");
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      long long k = -1;
+      const std::string file = entry.path().filename().string();
+      if (std::sscanf(file.c_str(), "frame_%lld.h5", &k) == 1 && !file.ends_with(".tmp"))
+        frames = std::max<std::int64_t>(frames, k + 1);
+    }
   }
   fs::create_directories(case_dir + "/vtk");
   // the dies, placed at their stroke at each frame's time (a part of their own in the .pvd)
@@ -101,7 +113,7 @@ int run(int argc, char** argv) {
   for (int f = 0; f < frames; ++f) {
     Frame fr;
     try {  // a frame missing on a rank or half written is reported and skipped; the rest is merged
-      fr = read_frame(files, f);
+      fr = read_frame(case_dir, ranks, f);
       sort_by_global_id(fr, case_dir + " frame " + std::to_string(f));
     } catch (const rk::Error& e) {
       std::fprintf(stderr, "rkpost: frame %d skipped: %s\n", f, e.what());

@@ -1,26 +1,13 @@
 #include "checkpoint.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
 
+#include "durable_file.hpp"
 #include "error.hpp"
 #include "h5file.hpp"
 
 namespace rk {
-namespace {
-
-bool fsync_path(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0) return false;
-  const bool ok = ::fsync(fd) == 0;
-  ::close(fd);
-  return ok;
-}
-
-}  // namespace
 
 std::string checkpoint_path(const std::string& case_dir, int rank) {
   char name[40];

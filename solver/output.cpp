@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "durable_file.hpp"
 #include "error.hpp"
 #include "h5file.hpp"
 
@@ -26,27 +27,25 @@ void cauchy_measures(const double* tau, double J, double& von_mises, double& pre
 
 }  // namespace
 
+static std::string frame_path(const std::string& dir, std::int64_t frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "/frame_%05lld.h5", static_cast<long long>(frame));
+  return dir + name;
+}
+
 ResultWriter::ResultWriter(const std::string& case_dir, const Model& md, std::int64_t resume_frames)
     : exchange_(md, kProjected), partial_(kProjected * md.n) {
-  std::filesystem::create_directories(case_dir + "/results");
   char name[32];
-  std::snprintf(name, sizeof name, "/results/rank_%04d.h5", md.rank);
-  path_ = case_dir + name;
-  if (resume_frames >= 0) {
-    H5File f(path_, H5File::Mode::append);
-    for (std::int64_t k = resume_frames; k < f.attr_int("frames") + 1; ++k) {
-      char group[32];
-      std::snprintf(group, sizeof group, "frames/%05lld", static_cast<long long>(k));
-      f.remove(group);
-    }
-    f.set_attr("frames", resume_frames);
-    frames_ = int(resume_frames);
-    return;
+  std::snprintf(name, sizeof name, "/results/rank_%04d", md.rank);
+  dir_ = case_dir + name;
+  std::filesystem::create_directories(dir_);
+  frames_ = int(std::max<std::int64_t>(resume_frames, 0));
+  for (const auto& entry : std::filesystem::directory_iterator(dir_)) {  // frames after the restart point
+    const std::string file = entry.path().filename().string();
+    long long k = -1;
+    if (std::sscanf(file.c_str(), "frame_%lld.h5", &k) == 1 && (k >= frames_ || file.ends_with(".tmp")))
+      std::filesystem::remove(entry.path());
   }
-  H5File f(path_, H5File::Mode::create);
-  f.set_attr("rank", std::int64_t(md.rank));
-  f.set_attr("ranks", std::int64_t(md.ranks));
-  f.set_attr("frames", std::int64_t(0));
 }
 
 void ResultWriter::write_frame(const Model& md, const State& st, const std::vector<double>& velocity,
@@ -92,21 +91,30 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     vm.push_back(value(2));
     pr.push_back(value(3));
   }
-  H5File f(path_, H5File::Mode::append);
-  char group[32];
-  std::snprintf(group, sizeof group, "frames/%05d/", frames_);
-  const std::string g(group);
-  f.write(g + "time", std::vector<double>{st.t});
-  f.write(g + "step", std::vector<std::int64_t>{st.step});
-  f.write(g + "global_id", gid);
-  f.write(g + "x", x, 3);
-  f.write(g + "displacement", u, 3);
-  f.write(g + "velocity", v, 3);
-  f.write(g + "eq_plastic_strain", ep);
-  f.write(g + "von_mises", vm);
-  f.write(g + "pressure", pr);
-  f.set_attr("frames", std::int64_t(frames_ + 1));
-  f.close();
+  const std::string path = frame_path(dir_, frames_), tmp = path + ".tmp";
+  try {
+    H5File f(tmp, H5File::Mode::create);
+    f.set_attr("rank", std::int64_t(md.rank));
+    f.set_attr("ranks", std::int64_t(md.ranks));
+    char group[32];
+    std::snprintf(group, sizeof group, "frames/%05d/", frames_);
+    const std::string g(group);
+    f.write(g + "time", std::vector<double>{st.t});
+    f.write(g + "step", std::vector<std::int64_t>{st.step});
+    f.write(g + "global_id", gid);
+    f.write(g + "x", x, 3);
+    f.write(g + "displacement", u, 3);
+    f.write(g + "velocity", v, 3);
+    f.write(g + "eq_plastic_strain", ep);
+    f.write(g + "von_mises", vm);
+    f.write(g + "pressure", pr);
+    f.close();
+  } catch (const Error&) {  // no partial frame is left behind
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw;
+  }
+  commit_file(tmp, path);
   ++frames_;
 }
 

@@ -17,15 +17,16 @@ namespace rk {
 // von_mises, pressure}; root attribute `frames` = number of complete frames.
 class ResultWriter {
  public:
-  // resume_frames < 0: a new file; otherwise continue the existing one after its first resume_frames
-  // frames (a restart drops the frames written after its checkpoint).
+  // One file per frame, CASE/results/rank_NNNN/frame_FFFFF.h5, each written whole or not at all
+  // (durable_file). resume_frames < 0: a new run (old frames are removed); otherwise keep the first
+  // resume_frames frames (a restart drops the frames written after its checkpoint).
   ResultWriter(const std::string& case_dir, const Model& md, std::int64_t resume_frames = -1);
   // Collective (the particle values of point quantities need the overlap exchange).
   void write_frame(const Model& md, const State& st, const std::vector<double>& velocity, const Comm& comm);
   int frames() const { return frames_; }
 
  private:
-  std::string path_;
+  std::string dir_;
   int frames_ = 0;
   OverlapExchange exchange_;
   std::vector<int128> partial_;

@@ -1,6 +1,7 @@
-"""rkpost with a damaged results file (issue 8): one rank's frame whose bytes were changed on disk
-(as a write cut short would leave them) is reported, naming the file and the dataset, and skipped;
-every other frame is still merged and rkpost exits 0."""
+"""rkpost with damaged results (issue 8): one rank's frame whose bytes were changed on disk is
+reported, naming the file and the dataset, and skipped; a frame file missing on a rank is reported
+and skipped; every other frame is still merged and rkpost exits 0. rksolve writes each frame whole
+(temporary name, fsync, rename), so a killed run leaves no half-written frame file behind."""
 import subprocess
 import xml.etree.ElementTree as ET
 
@@ -10,18 +11,23 @@ tools = rkcase.tools_from_argv()
 case = tools.case("rkpost_bad_frame")
 tools.prep(case, 2, sets=["discretization.spacing=1.6e-3"])
 tools.solve(case, 2, sets=["time.end=8e-6", "time.output_interval=2e-6"])
-rank1 = case / "results" / "rank_0001.h5"
+rank1 = case / "results" / "rank_0001" / "frame_00002.h5"
+rkcase.check(not list((case / "results").rglob("*.tmp")), "no temporary frame file left")
 raw = case / "velocity.bin"
 subprocess.run(["h5dump", "-d", "/frames/00002/velocity", "-b", "LE", "-o", raw, rank1], check=True,
                capture_output=True)
 data, chunk = bytearray(rank1.read_bytes()), raw.read_bytes()
 at = data.find(chunk[:64])
-rkcase.check(at > 0, f"frame 2's velocity found at byte {at} of {rank1.name}")
+rkcase.check(at > 0, f"frame 2's velocity found at byte {at} of rank 1's frame file")
 data[at + 100] ^= 0xFF  # one flipped byte: the Fletcher32 checksum no longer matches
 rank1.write_bytes(bytes(data))
+(case / "results" / "rank_0000" / "frame_00003.h5").unlink()
 p = tools.post(case, expect_ok=False)
 rkcase.check(p.returncode == 0, f"rkpost exits 0 with one bad frame ({p.returncode})")
-rkcase.check("frame 2 skipped" in p.stderr and "rank_0001.h5" in p.stderr and "frames/00002/velocity" in p.stderr,
-             f"the bad frame is reported: {p.stderr.strip()}")
+rkcase.check("frame 2 skipped" in p.stderr and "rank_0001/frame_00002.h5" in p.stderr and
+             "frames/00002/velocity" in p.stderr, f"the damaged frame is reported: {p.stderr.strip()}")
+rkcase.check("frame 3 skipped" in p.stderr and "rank_0000/frame_00003.h5: missing" in p.stderr,
+             "the missing frame is reported")
 merged = [d.get("file") for d in ET.parse(case / "vtk" / "case.pvd").getroot().iter("DataSet")]
-rkcase.check(len(merged) == 4, f"the other 4 of 5 frames are merged: {merged}")
+rkcase.check(merged == ["frame_00000.vtu", "frame_00001.vtu", "frame_00004.vtu"],
+             f"the other 3 of 5 frames are merged: {merged}")
