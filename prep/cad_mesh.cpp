@@ -47,7 +47,6 @@ VolumeMesh mesh_with_gmsh(const MeshRequest& r) {
   if (ext == ".geo") {
     gmsh::open(r.cad);
   } else if (ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs" || ext == ".brep") {
-    gmsh::option::setNumber("Geometry.OCCTargetUnit", 0);  // keep the file's own numbers; unit from the scene
     gmsh::merge(r.cad);
     gmsh::option::setNumber("Mesh.MeshSizeMax", 2 * h);   // subdivision halves the edges
     gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * h);

@@ -34,7 +34,6 @@ Soup gmsh_boundary(const Die& die, double spacing) {
   if (ext == ".geo") {
     gmsh::open(die.cad);
   } else if (ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs" || ext == ".brep") {
-    gmsh::option::setNumber("Geometry.OCCTargetUnit", 0);
     gmsh::merge(die.cad);
     gmsh::option::setNumber("Mesh.MeshSizeMax", h);
   } else {
