@@ -1,6 +1,7 @@
 """Bad CAD input is one clear error naming the die or the file, with a non-zero exit: a missing die
 CAD file, a die that is not a closed solid, a workpiece that starts inside a die, a missing workpiece
-CAD, and a workpiece given in the wrong unit (millimetres read as metres, refused before meshing)."""
+CAD, an unreadable one, and a workpiece given in the wrong unit (millimetres read as metres, refused
+before meshing)."""
 import rkcase
 
 tools = rkcase.tools_from_argv()
@@ -29,7 +30,10 @@ expect(scene_with_die("open", 'SetFactory("OpenCASCADE");\nRectangle(1) = {-2, -
        "no closed solid", "die that is only a surface")
 
 scene = rkcase.TAYLOR
-for sets, needle, what in ((["geometry.unit=m"], "the part is 32.4 m across with geometry.unit = 1 m per CAD unit",
+(w / "junk.step").write_text("this is not a STEP file\n")
+for sets, needle, what in (([f"geometry.cad={w / 'junk.step'}"], "junk.step: gmsh failed: Could not read file",
+                            "unreadable workpiece CAD"),
+                           (["geometry.unit=m"], "the part is 32.4 m across with geometry.unit = 1 m per CAD unit",
                             "Taylor bar in mm read as metres"),
                            ([f"geometry.cad={w / 'nothing.step'}"], "nothing.step: CAD file not found",
                             "missing workpiece CAD")):
