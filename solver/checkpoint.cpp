@@ -38,11 +38,15 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     f.close();
   }
   if (!fsync_path(tmp)) throw Error(tmp + ": cannot be synced to disk (disk full?)");
-  // the new checkpoint must read back before it replaces the last good one
+  // The new checkpoint must read back, every dataset equal to what was written, before it replaces
+  // the last good one (on a full file system a dataset can come back unallocated).
   bool readable = false;
   try {
     H5File check(tmp, H5File::Mode::read);
-    readable = check.read<double>("clock/scalars").size() == 10 && check.read<double>("points/wp").size() == md.m;
+    readable = check.read<double>("clock/scalars").size() == 10 && check.read<std::int64_t>("clock/integers").size() == 3 &&
+               check.read<double>("dies/work", 3).size() == 3 * dies.size() && check.read<double>("particles/u", 3) == st.u &&
+               check.read<double>("particles/v", 3) == st.v && check.read<double>("points/cp_inv", 6) == st.cp_inv &&
+               check.read<double>("points/ep") == st.ep && check.read<double>("points/wp") == st.wp;
   } catch (const Error&) {
   }
   if (!readable) throw Error(tmp + ": the checkpoint did not read back (disk full?); the previous one is kept");
