@@ -37,7 +37,6 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     f.write("points/wp", st.wp);
     f.close();
   }
-  if (!fsync_path(tmp)) throw Error(tmp + ": cannot be synced to disk (disk full?)");
   // The new checkpoint must read back, every dataset equal to what was written, before it replaces
   // the last good one (on a full file system a dataset can come back unallocated).
   bool readable = false;
@@ -65,8 +64,7 @@ void write_checkpoint(const std::string& case_dir, const Model& md, const State&
     std::filesystem::remove(tmp, ignored);
     throw;
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw Error(path + ": cannot replace the checkpoint");
-  fsync_path(case_dir + "/checkpoint");
+  commit_file(tmp, path);  // fsync, rename over the last good one, fsync the folder
 }
 
 void read_checkpoint(const std::string& case_dir, const Model& md, State& st, RunClock& c, std::vector<DieTotals>& dies) {

@@ -116,12 +116,11 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   std::vector<double> v_old(st.v.size());
   std::vector<double> row(columns.size(), 0.0), wall_force(scene.rigid_walls.size(), 0.0);
   std::vector<double> sums(5 + scene.rigid_walls.size() + 5 * scene.dies.size());  // see the history row
-  double part_lo[3] = {1e300, 1e300, 1e300}, part_hi[3] = {1e300, 1e300, 1e300};  // the part's initial box
+  double part_lo[3] = {1e300, 1e300, 1e300}, part_hi[3] = {-1e300, -1e300, -1e300};  // the part's initial box
   for (std::size_t I = 0; I < md.n; ++I)
-    for (int d = 0; d < 3; ++d) part_lo[d] = std::min(part_lo[d], md.X[3 * I + d]), part_hi[d] = std::min(part_hi[d], -md.X[3 * I + d]);
+    for (int d = 0; d < 3; ++d) part_lo[d] = std::min(part_lo[d], md.X[3 * I + d]), part_hi[d] = std::max(part_hi[d], md.X[3 * I + d]);
   comm.min(part_lo, 3);
-  comm.min(part_hi, 3);
-  for (double& v : part_hi) v = -v;
+  comm.max(part_hi, 3);
   double volume0 = 0;  // sum of the points' reference volumes (each point lives on one rank)
   for (std::size_t g = 0; g < md.m; ++g) volume0 += md.weight[g];
   comm.sum(&volume0, 1);
