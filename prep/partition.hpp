@@ -25,6 +25,7 @@ struct SubdomainRequest {
   double dilation;
   std::string scene_hash;
   const std::vector<DieSurface>& dies;
+  bool surface_supports = false;  // also the supports of the owned surface particles (exact EBCs)
 };
 
 std::vector<Subdomain> build_subdomains(const SubdomainRequest& request);

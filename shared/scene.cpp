@@ -203,6 +203,46 @@ void apply_override(YAML::Node root, const Override& o, const std::string& file)
   }
 }
 
+// A prescribed motion (dies, prescribed faces): `direction` and a constant `speed`, or a piecewise-linear
+// `curve` of [time, stroke] pairs.
+DieMotion read_motion(Section& owner, const std::string& name) {
+  DieMotion motion;
+  Section m = owner.section("motion", true);
+  motion.direction = m.vec3("direction", std::nullopt, true);
+  YAML::Node curve = m.get("curve", false);
+  if (curve && !curve.IsNull()) {
+    if (!curve.IsSequence()) throw Error(where(name, curve, m.key_path("curve")) + ": must be a list of [time, stroke]");
+    YAML::Node out(YAML::NodeType::Sequence);
+    for (std::size_t i = 0; i < curve.size(); ++i) {
+      const YAML::Node pt = curve[i];
+      if (!pt.IsSequence() || pt.size() != 2)
+        throw Error(where(name, pt, m.key_path("curve")) + ": key '" + m.key_path("curve") + "' entry " +
+                    std::to_string(i) + " must be [time, stroke]");
+      double t = 0, x = 0;
+      try {
+        t = pt[0].as<double>(), x = pt[1].as<double>();
+      } catch (const YAML::Exception&) {
+        throw Error(where(name, pt, m.key_path("curve")) + ": key '" + m.key_path("curve") + "' entry " +
+                    std::to_string(i) + " must hold numbers");
+      }
+      if (!motion.curve.empty() && !(t > motion.curve.back().first))
+        throw Error(where(name, pt, m.key_path("curve")) + ": key '" + m.key_path("curve") +
+                    "' times must increase");
+      motion.curve.emplace_back(t, x);
+      YAML::Node o(YAML::NodeType::Sequence);
+      o.push_back(t), o.push_back(x);
+      o.SetStyle(YAML::EmitterStyle::Flow);
+      out.push_back(o);
+    }
+    m.record_node("curve", out);
+    motion.speed = m.number("speed", 0.0, {0, 0});
+  } else {
+    motion.speed = m.number("speed", std::nullopt, {0, 1e4});
+  }
+  m.done();
+  return motion;
+}
+
 }  // namespace
 
 Override parse_override(const std::string& text) {
@@ -275,6 +315,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     o.integration = d.text("integration", o.integration, {"gauss"});
     o.gauss_order = d.integer("gauss_order", o.gauss_order, 1, 3);
     o.volumetric = d.text("volumetric", o.volumetric, {"fbar", "none"});
+    o.ebc_method = d.text("ebc_method", o.ebc_method, {"nodal", "transformation"});
     d.done();
   }
   {
@@ -313,6 +354,19 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     b.list("symmetry_planes", [&](Section& p) {
       s.symmetry_planes.push_back({p.vec3("point", std::nullopt), p.vec3("normal", std::nullopt, true)});
     });
+    auto face = [&](Section& p, const std::string& kind, std::size_t count) {
+      EssentialFace f;
+      f.name = p.text("name", kind + std::to_string(count));
+      f.point = p.vec3("point", std::nullopt);
+      f.normal = p.vec3("normal", std::nullopt, true);
+      return f;
+    };
+    b.list("fixed_faces", [&](Section& p) { s.fixed_faces.push_back(face(p, "fixed", s.fixed_faces.size())); });
+    b.list("prescribed_faces", [&](Section& p) {
+      EssentialFace f = face(p, "prescribed", s.prescribed_faces.size());
+      f.motion = read_motion(p, name);
+      s.prescribed_faces.push_back(f);
+    });
     b.list("rigid_walls", [&](Section& p) {
       RigidWall w;
       w.name = p.text("name", "wall" + std::to_string(s.rigid_walls.size()));
@@ -331,40 +385,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     d.record("cad", die.cad);
     die.unit = unit_length(d.text("unit", "m", {"m", "mm", "cm", "in"}));
     die.friction = d.number("friction", 0.0, {0, 10});
-    Section m = d.section("motion", true);
-    die.motion.direction = m.vec3("direction", std::nullopt, true);
-    YAML::Node curve = m.get("curve", false);
-    if (curve && !curve.IsNull()) {
-      std::vector<double> flat;
-      if (!curve.IsSequence()) throw Error(where(name, curve, m.key_path("curve")) + ": must be a list of [time, stroke]");
-      YAML::Node out(YAML::NodeType::Sequence);
-      for (std::size_t i = 0; i < curve.size(); ++i) {
-        const YAML::Node pt = curve[i];
-        if (!pt.IsSequence() || pt.size() != 2)
-          throw Error(where(name, pt, m.key_path("curve")) + ": key '" + m.key_path("curve") + "' entry " +
-                      std::to_string(i) + " must be [time, stroke]");
-        double t = 0, x = 0;
-        try {
-          t = pt[0].as<double>(), x = pt[1].as<double>();
-        } catch (const YAML::Exception&) {
-          throw Error(where(name, pt, m.key_path("curve")) + ": key '" + m.key_path("curve") + "' entry " +
-                      std::to_string(i) + " must hold numbers");
-        }
-        if (!die.motion.curve.empty() && !(t > die.motion.curve.back().first))
-          throw Error(where(name, pt, m.key_path("curve")) + ": key '" + m.key_path("curve") +
-                      "' times must increase");
-        die.motion.curve.emplace_back(t, x);
-        YAML::Node o(YAML::NodeType::Sequence);
-        o.push_back(t), o.push_back(x);
-        o.SetStyle(YAML::EmitterStyle::Flow);
-        out.push_back(o);
-      }
-      m.record_node("curve", out);
-      die.motion.speed = m.number("speed", 0.0, {0, 0});
-    } else {
-      die.motion.speed = m.number("speed", std::nullopt, {0, 1e4});
-    }
-    m.done();
+    die.motion = read_motion(d, name);
     // Full part / modeled part: each symmetry plane whose normal is normal to the motion mirrors the
     // die force; two orthogonal such planes make a quarter (x4). Other sectors must say it.
     std::vector<Vec3> mirror;

@@ -39,6 +39,16 @@ struct Die {
   double force_factor = 1;  // full part / modeled part (symmetry)
 };
 
+// A face of the part held by an essential boundary condition: the particles on the plane through
+// `point` with normal `normal`. Fixed: all three displacement components zero. Prescribed: the
+// displacement along motion.direction follows motion.stroke(t); the other components are free.
+struct EssentialFace {
+  std::string name;
+  Vec3 point{};
+  Vec3 normal{};  // unit
+  DieMotion motion;
+};
+
 enum class MaterialModel { elastic, j2_linear, j2_power };
 
 struct Material {
@@ -68,6 +78,7 @@ struct Scene {
     std::string integration = "gauss";
     int gauss_order = 2;      // Gauss points per direction in each cell
     std::string volumetric = "fbar";  // fbar (cell-averaged dilatation) or none
+    std::string ebc_method = "nodal"; // essential BCs: nodal (on the coefficients) or transformation (exact)
   } discretization;
 
   Material material;
@@ -81,6 +92,7 @@ struct Scene {
   } loads;
 
   std::vector<SymmetryPlane> symmetry_planes;
+  std::vector<EssentialFace> fixed_faces, prescribed_faces;
   std::vector<RigidWall> rigid_walls;
   std::vector<Die> dies;
 

@@ -4,6 +4,7 @@
 #include <mpi.h>
 
 #include <string>
+#include <vector>
 
 namespace rk {
 
@@ -15,6 +16,8 @@ class Comm {
   void max(double* values, int count) const;  // in place, over all ranks
   void sum(double* values, int count) const;
   void min(double* values, int count) const;
+  // Every rank's `mine`, concatenated in rank order, on every rank (set-up only).
+  std::vector<double> gather_all(const std::vector<double>& mine) const;
   // Every rank calls it. If any rank is not ok, every rank throws rk::Error with the message of the
   // lowest failing rank: one clear message, no hang, no rank left waiting.
   void check(bool ok, const std::string& message) const;

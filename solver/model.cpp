@@ -5,29 +5,13 @@
 #include <limits>
 #include <sstream>
 
+#include "boundary/constraints.hpp"
 #include "error.hpp"
 #include "neighbour_grid.hpp"
 #include "rk_shape.hpp"
 
 namespace rk {
 namespace {
-
-void build_constraints(Model& md, const Scene& scene) {
-  md.constraint_offsets.assign(1, 0);
-  for (std::size_t I = 0; I < md.n; ++I) {
-    std::vector<Eigen::Vector3d> dirs;
-    for (const auto& pl : scene.symmetry_planes) {
-      const double d = (md.X[3 * I] - pl.point[0]) * pl.normal[0] + (md.X[3 * I + 1] - pl.point[1]) * pl.normal[1] +
-                       (md.X[3 * I + 2] - pl.point[2]) * pl.normal[2];
-      if (std::abs(d) > 1e-6 * md.spacing[I]) continue;
-      Eigen::Vector3d v(pl.normal[0], pl.normal[1], pl.normal[2]);
-      for (const auto& e : dirs) v -= v.dot(e) * e;  // Gram-Schmidt: exact for any plane normals
-      if (v.norm() > 1e-8) dirs.push_back(v.normalized());
-    }
-    for (const auto& e : dirs) md.constraint_dirs.insert(md.constraint_dirs.end(), e.data(), e.data() + 3);
-    md.constraint_offsets.push_back(std::int32_t(md.constraint_dirs.size() / 3));
-  }
-}
 
 void build_shape_functions(Model& md, const Subdomain& sub, const Scene& scene) {
   std::vector<double> radius(md.n);
@@ -101,7 +85,7 @@ Model build_model(const Subdomain& sub, const Scene& scene) {
     md.owned[I] = sub.owner[I] == sub.rank;
     md.surface[I] = (sub.flags[I] & kSurface) != 0;
   }
-  build_constraints(md, scene);
+  build_constraints(md, sub, scene);
 
   md.m = sub.point_count();
   md.weight = sub.point_weight;

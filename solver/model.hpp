@@ -19,9 +19,18 @@ struct Model {
   std::vector<std::int64_t> global_id;
   std::vector<double> X, mass, spacing;
   std::vector<std::uint8_t> owned, surface;
-  // constraint directions of particles on symmetry planes: orthonormal, CSR per particle
+  // essential BCs (boundary/constraints.cpp): each local particle's constrained directions e_k,
+  // orthonormal, CSR per particle; the value g_k(t) = coef * stroke(t) of prescribed face
+  // `value_face` (-1: g = 0); the face a reaction is reported under (-1: a symmetry plane)
   std::vector<std::int32_t> constraint_offsets;
   std::vector<double> constraint_dirs;  // 3 per direction
+  std::vector<double> constraint_coef;
+  std::vector<std::int32_t> constraint_value_face, constraint_face;
+  // the owned constrained particles and their rows N_J(X_I) (local J, CSR), for the exact method
+  // and for measuring the error of the nodal one
+  std::vector<std::int32_t> ebc_particles, ebc_offsets, ebc_cols;
+  std::vector<double> ebc_N;
+  std::vector<double> face_particles;  // owned particles per face: fixed, prescribed, symmetry
 
   // integration points, SoA; neighbours and shape data in CSR (point -> columns)
   std::size_t m = 0;

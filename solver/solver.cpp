@@ -10,7 +10,8 @@
 #include <limits>
 #include <sstream>
 
-#include "boundary/symmetry.hpp"
+#include "boundary/constraints.hpp"
+#include "boundary/essential_bc.hpp"
 #include "checkpoint.hpp"
 #include "contact/die_contact.hpp"
 #include "contact/rigid_wall.hpp"
@@ -62,10 +63,14 @@ std::string describe_particle(const Model& md, const State& st, std::int32_t I) 
 std::vector<std::string> history_columns(const Scene& scene) {
   std::vector<std::string> c{"time",         "dt",          "kinetic",      "internal",      "plastic_work",
                              "external_work", "contact_work", "energy_error", "friction_work", "contacts",
-                             "max_penetration", "kinetic_internal_ratio", "volume_change"};
+                             "max_penetration", "kinetic_internal_ratio", "volume_change", "ebc_error"};
   for (const auto& w : scene.rigid_walls) c.push_back(w.name + ".force");
   for (const auto& d : scene.dies)
     for (const char* q : {".stroke", ".force", ".fx", ".fy", ".fz", ".work"}) c.push_back(d.name + q);
+  for (const auto& f : scene.fixed_faces)
+    for (const char* q : {".fx", ".fy", ".fz"}) c.push_back(f.name + q);
+  for (const auto& f : scene.prescribed_faces)
+    for (const char* q : {".stroke", ".fx", ".fy", ".fz"}) c.push_back(f.name + q);
   return c;
 }
 
@@ -84,7 +89,6 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                                                       " dies but the scene declares " + std::to_string(scene.dies.size()) +
                                                       "; re-run rkprep");
   State st = State::initial(md, scene.initial.velocity.data());
-  apply_symmetry(md, st);
   compute_deformation_gradient(md, st);
   double dt0 = stable_time_step(md, st, scene.time.cfl).dt;
   comm.min(&dt0, 1);
@@ -93,6 +97,8 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     scale_mass(md, factor);
     dt0 *= std::sqrt(factor);
   }
+  auto ebc = collectively(comm, [&] { return std::make_unique<EssentialBcs>(md, scene, comm); });
+  ebc->apply(md, st, 0.0, 0.0, 0.0, st.v);  // initial velocities that meet the conditions' rates
   const bool has_gravity = norm(scene.loads.gravity) > 0;
   DieContact dies(md, scene, md.dies);
   RunClock clock;
@@ -115,7 +121,8 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   OverlapExchange exchange(md, 3);
   std::vector<double> v_old(st.v.size());
   std::vector<double> row(columns.size(), 0.0), wall_force(scene.rigid_walls.size(), 0.0);
-  std::vector<double> sums(5 + scene.rigid_walls.size() + 5 * scene.dies.size());  // see the history row
+  std::vector<double> sums(5 + scene.rigid_walls.size() + 5 * scene.dies.size() + ebc->reactions().size());  // see the history row
+  double max_ebc_error = 0;
   double part_lo[3] = {1e300, 1e300, 1e300}, part_hi[3] = {-1e300, -1e300, -1e300};  // the part's initial box
   for (std::size_t I = 0; I < md.n; ++I)
     for (int d = 0; d < 3; ++d) part_lo[d] = std::min(part_lo[d], md.X[3 * I + d]), part_hi[d] = std::max(part_hi[d], md.X[3 * I + d]);
@@ -220,7 +227,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
         st.force[3 * I + i] = scale.real(st.partial[3 * I + i]);
         st.v[3 * I + i] += dt_avg * (g[i] - st.force[3 * I + i] / md.mass[I]);
       }
-    apply_symmetry(md, st);
+    ebc->apply(md, st, st.t + dt, dt, dt_avg, v_old);
     std::int64_t contacts = 0;
     for (std::size_t w = 0; w < scene.rigid_walls.size(); ++w) {
       const WallResult r = apply_rigid_wall(md, st, scene.rigid_walls[w], dt, dt_avg, v_old);
@@ -238,7 +245,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     if (last || st.t >= next_history - 1e-9 * hist_dt) {  // history row at t^n
       Energies e = compute_energies(md, st, v_old, comm);
       // Global sums for the row, laid out as: the scalars below, one force per rigid wall, then
-      // (contacts, fx, fy, fz, press work) per die.
+      // (contacts, fx, fy, fz, press work) per die, then (fx, fy, fz) per fixed or prescribed face.
       enum { kContacts, kSprings, kFriction, kDieWork, kVolume, kScalars };
       const std::size_t walls = wall_force.size(), die0 = kScalars + walls;
       std::fill(sums.begin(), sums.end(), 0.0);
@@ -254,8 +261,13 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
         sums[kSprings] += t.spring_energy, sums[kFriction] += t.friction_work, sums[kDieWork] += t.contact_work;
         pen = std::max(pen, t.max_penetration);
       }
+      const std::size_t face0 = die0 + 5 * dies.size();
+      std::copy(ebc->reactions().begin(), ebc->reactions().end(), sums.begin() + std::ptrdiff_t(face0));
       comm.sum(sums.data(), int(sums.size()));
-      comm.max(&pen, 1);
+      double worst[2] = {pen, ebc->max_error(md, st, st.t)};
+      comm.max(worst, 2);
+      pen = worst[0];
+      max_ebc_error = std::max(max_ebc_error, worst[1]);
       e.contact += sums[kDieWork];
       e.internal += sums[kSprings];  // penalty springs store energy like the material
       last_error = energy_error(e, kinetic0);
@@ -263,7 +275,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       if (st.t > 0.05 * t_end) max_ke_ratio = std::max(max_ke_ratio, ratio);
       std::size_t c = 0;
       for (double v : {st.t, dt, e.kinetic, e.internal, e.plastic, e.external, e.contact, last_error, sums[kFriction],
-                       sums[kContacts], pen, ratio, sums[kVolume] / volume0 - 1})
+                       sums[kContacts], pen, ratio, sums[kVolume] / volume0 - 1, worst[1]})
         row[c++] = v;
       for (std::size_t w = 0; w < walls; ++w) row[c++] = sums[kScalars + w];
       for (std::size_t d = 0; d < dies.size(); ++d) {
@@ -274,6 +286,10 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                                        f[2] * die.motion.direction[2]);
         row[c++] = f[0], row[c++] = f[1], row[c++] = f[2];
         row[c++] = f[3];
+      }
+      for (std::size_t f = 0; f < scene.fixed_faces.size() + scene.prescribed_faces.size(); ++f) {
+        if (f >= scene.fixed_faces.size()) row[c++] = scene.prescribed_faces[f - scene.fixed_faces.size()].motion.stroke(st.t);
+        for (int i = 0; i < 3; ++i) row[c++] = sums[face0 + 3 * f + i];
       }
       collectively(comm, [&] { return history ? (history->write(row), 0) : 0; });  // a full disk stops all ranks
       next_history += hist_dt;
@@ -357,6 +373,9 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                         {"point_updates_per_s", loop_s > 0 ? counts[1] * double(st.step) / loop_s : 0.0},
                         {"ns_per_point_update", st.step > 0 ? 1e9 * loop_s * comm.size() / (counts[1] * double(st.step)) : 0.0},
                         {"energy_error", last_error},
+                        {"ebc_method", scene.discretization.ebc_method},
+                        {"constraints", ebc->constraints()},
+                        {"max_ebc_error_m", max_ebc_error},
                         {"initial_kinetic_energy", kinetic0},
                         {"mass_scaling", md.mass_scaling},
                         {"max_kinetic_internal_ratio", max_ke_ratio},

@@ -11,24 +11,31 @@ import rkcase
 
 tools = rkcase.tools_from_argv()
 sets = ["time.end=8e-6", "time.output_interval=4e-6"]
-frames = {}
-for ranks in (1, 2, 3, 4):
-    case = tools.case(f"ranks_{ranks}")
-    tools.prep(case, ranks, sets=["discretization.spacing=1.2e-3"])
-    tools.solve(case, ranks, sets=sets)
-    tools.post(case)
-    steps = json.loads((case / "solve.json").read_text())["steps"]
-    vtu = meshio.read(case / "vtk" / "frame_00002.vtu")
-    order = np.argsort(vtu.point_data["global_id"].ravel())
-    frames[ranks] = {k: np.asarray(v).reshape(len(order), -1)[order] for k, v in vtu.point_data.items()}
-    frames[ranks]["x"] = np.asarray(vtu.points)[order]
-    owners = set(np.unique(frames[ranks]["rank"]).tolist())
-    rkcase.check(owners == set(range(ranks)), f"{ranks} ranks: every rank owns particles ({steps} steps)")
 
-base = frames[1]
-rkcase.check(base["eq_plastic_strain"].max() > 0.1, "the run is well into plastic flow")
-for ranks in (2, 3, 4):
-    for key in ("x", "velocity", "eq_plastic_strain", "displacement", "von_mises"):
-        same = np.array_equal(frames[ranks][key], base[key])
-        diff = np.abs(frames[ranks][key] - base[key]).max()
-        rkcase.check(same, f"{ranks} ranks: {key} bitwise equal to 1 rank (max diff {diff:.3g})")
+
+def frames_of(method):
+    frames = {}
+    for ranks in (1, 2, 3, 4):
+        case = tools.case(f"ranks_{ranks}_{method}")
+        tools.prep(case, ranks, sets=["discretization.spacing=1.2e-3", f"discretization.ebc_method={method}"])
+        tools.solve(case, ranks, sets=sets)
+        tools.post(case)
+        steps = json.loads((case / "solve.json").read_text())["steps"]
+        vtu = meshio.read(case / "vtk" / "frame_00002.vtu")
+        order = np.argsort(vtu.point_data["global_id"].ravel())
+        frames[ranks] = {k: np.asarray(v).reshape(len(order), -1)[order] for k, v in vtu.point_data.items()}
+        frames[ranks]["x"] = np.asarray(vtu.points)[order]
+        owners = set(np.unique(frames[ranks]["rank"]).tolist())
+        rkcase.check(owners == set(range(ranks)), f"{method}, {ranks} ranks: every rank owns particles ({steps} steps)")
+    return frames
+
+
+for method in ("nodal", "transformation"):
+    frames = frames_of(method)
+    base = frames[1]
+    rkcase.check(base["eq_plastic_strain"].max() > 0.1, f"{method}: the run is well into plastic flow")
+    for ranks in (2, 3, 4):
+        for key in ("x", "velocity", "eq_plastic_strain", "displacement", "von_mises"):
+            same = np.array_equal(frames[ranks][key], base[key])
+            diff = np.abs(frames[ranks][key] - base[key]).max()
+            rkcase.check(same, f"{method}, {ranks} ranks: {key} bitwise equal to 1 rank (max diff {diff:.3g})")

@@ -1,0 +1,149 @@
+#include "boundary/constraints.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <sstream>
+
+#include "error.hpp"
+#include "model.hpp"
+#include "neighbour_grid.hpp"
+#include "rk_shape.hpp"
+
+namespace rk {
+namespace {
+
+// One constraint before orthonormalization: direction, value coef * stroke of prescribed face
+// `value_face` (-1: zero), and the face its reaction is reported under (-1: symmetry plane).
+struct Candidate {
+  Eigen::Vector3d e;
+  double coef = 0;
+  int value_face = -1;
+  int face = -1;
+};
+
+std::string where(const Model& md, std::size_t I) {
+  std::ostringstream s;
+  s << "particle " << md.global_id[I] << " at (" << md.X[3 * I] << ", " << md.X[3 * I + 1] << ", " << md.X[3 * I + 2]
+    << ") m";
+  return s.str();
+}
+
+bool on_plane(const Model& md, std::size_t I, const Vec3& point, const Vec3& normal) {
+  double d = 0;
+  for (int i = 0; i < 3; ++i) d += (md.X[3 * I + i] - point[i]) * normal[i];
+  return std::abs(d) <= 1e-6 * md.spacing[I];
+}
+
+// The candidates of particle I in priority order: fixed faces, prescribed faces, symmetry planes.
+std::vector<Candidate> candidates(const Model& md, std::size_t I, const Scene& scene, std::vector<std::string>& names) {
+  std::vector<Candidate> out;
+  names.clear();
+  const int fixed = int(scene.fixed_faces.size());
+  for (int f = 0; f < fixed; ++f)
+    if (on_plane(md, I, scene.fixed_faces[f].point, scene.fixed_faces[f].normal)) {
+      for (int d = 0; d < 3; ++d) out.push_back({Eigen::Vector3d::Unit(d), 0.0, -1, f});
+      names.push_back(scene.fixed_faces[f].name);
+    }
+  for (int p = 0; p < int(scene.prescribed_faces.size()); ++p) {
+    const EssentialFace& face = scene.prescribed_faces[p];
+    if (on_plane(md, I, face.point, face.normal)) {
+      const Vec3& d = face.motion.direction;
+      out.push_back({Eigen::Vector3d(d[0], d[1], d[2]), 1.0, p, fixed + p});
+      names.push_back(face.name);
+    }
+  }
+  for (const auto& pl : scene.symmetry_planes)
+    if (on_plane(md, I, pl.point, pl.normal)) {
+      out.push_back({Eigen::Vector3d(pl.normal[0], pl.normal[1], pl.normal[2]), 0.0, -1, -1});
+      names.push_back("a symmetry plane");
+    }
+  return out;
+}
+
+// Gram-Schmidt on directions and values together: e_k . u = g_k stays the same set of conditions.
+std::vector<Candidate> orthonormalize(const Model& md, std::size_t I, std::vector<Candidate> in,
+                                      const std::vector<std::string>& names) {
+  std::vector<Candidate> out;
+  auto conflict = [&] {
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "'" : ", '") + n + "'";
+    return Error(where(md, I) + " lies on faces " + list +
+                 " that prescribe different motions along one direction; separate the faces");
+  };
+  for (Candidate c : in) {
+    for (const Candidate& e : out) {
+      const double proj = c.e.dot(e.e);
+      c.e -= proj * e.e;
+      if (e.value_face >= 0 && proj != 0) {
+        if (c.value_face >= 0 && c.value_face != e.value_face && c.coef != 0) throw conflict();
+        if (c.value_face < 0) c.value_face = e.value_face, c.coef = 0;
+        c.coef -= proj * e.coef;
+      }
+    }
+    const double len = c.e.norm();
+    if (len < 1e-8) {  // already held: it must ask for what the others ask
+      if (c.value_face >= 0 && std::abs(c.coef) > 1e-8) throw conflict();
+      continue;
+    }
+    c.e /= len, c.coef /= len;
+    out.push_back(c);
+  }
+  return out;
+}
+
+}  // namespace
+
+void build_constraints(Model& md, const Subdomain& sub, const Scene& scene) {
+  md.constraint_offsets.assign(1, 0);
+  md.constraint_dirs.clear(), md.constraint_coef.clear(), md.constraint_value_face.clear(), md.constraint_face.clear();
+  md.ebc_particles.clear(), md.ebc_cols.clear(), md.ebc_N.clear();
+  md.ebc_offsets.assign(1, 0);
+  md.face_particles.assign(reported_faces(scene) + scene.symmetry_planes.size(), 0);
+
+  std::vector<double> radius(md.n);
+  for (std::size_t I = 0; I < md.n; ++I) radius[I] = scene.discretization.dilation * md.spacing[I];
+  NeighbourGrid grid(md.X.data(), radius.data(), md.n);
+  const RkParticles particles{md.X.data(), sub.volume.data(), radius.data()};
+  const Kernel kernel = parse_kernel(scene.discretization.kernel);
+  const Basis basis = parse_basis(scene.discretization.basis);
+  std::vector<std::string> names;
+  std::vector<std::int32_t> found;
+  std::vector<double> dN;
+  for (std::size_t I = 0; I < md.n; ++I) {
+    const std::vector<Candidate> dirs = orthonormalize(md, I, candidates(md, I, scene, names), names);
+    for (const auto& c : dirs) {
+      md.constraint_dirs.insert(md.constraint_dirs.end(), c.e.data(), c.e.data() + 3);
+      md.constraint_coef.push_back(c.coef);
+      md.constraint_value_face.push_back(c.value_face);
+      md.constraint_face.push_back(c.face);
+    }
+    md.constraint_offsets.push_back(std::int32_t(md.constraint_coef.size()));
+    if (dirs.empty() || !md.owned[I]) continue;
+    if (!md.surface[I])
+      throw Error(where(md, I) + " lies on " + names.front() +
+                  " but inside the part: a fixed face, prescribed face or symmetry plane must be a face of the part");
+    // the row N_J(X_I): rkprep made the whole support of an owned surface particle local
+    for (std::size_t f = 0; f < scene.fixed_faces.size(); ++f)
+      md.face_particles[f] += on_plane(md, I, scene.fixed_faces[f].point, scene.fixed_faces[f].normal);
+    for (std::size_t p = 0; p < scene.prescribed_faces.size(); ++p)
+      md.face_particles[scene.fixed_faces.size() + p] +=
+          on_plane(md, I, scene.prescribed_faces[p].point, scene.prescribed_faces[p].normal);
+    for (std::size_t s = 0; s < scene.symmetry_planes.size(); ++s)
+      md.face_particles[reported_faces(scene) + s] +=
+          on_plane(md, I, scene.symmetry_planes[s].point, scene.symmetry_planes[s].normal);
+    found.clear();
+    grid.covering(&md.X[3 * I], found);
+    const std::size_t k0 = md.ebc_cols.size();
+    md.ebc_cols.insert(md.ebc_cols.end(), found.begin(), found.end());
+    md.ebc_N.resize(md.ebc_cols.size());
+    dN.resize(3 * found.size());
+    const RkResult r = rk_shape(&md.X[3 * I], found, particles, kernel, basis, &md.ebc_N[k0], dN.data());
+    if (!r.regular)
+      throw Error("the RK moment matrix is singular at the constrained " + where(md, I) +
+                  "; increase discretization.dilation");
+    md.ebc_particles.push_back(std::int32_t(I));
+    md.ebc_offsets.push_back(std::int32_t(md.ebc_cols.size()));
+  }
+}
+
+}  // namespace rk
