@@ -342,6 +342,12 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
   {
     Section ic = top.section("initial_conditions");
     s.initial.velocity = ic.vec3("velocity", Vec3{0, 0, 0});
+    Section grad = ic.section("velocity_gradient");  // rows: the gradients of v_x, v_y, v_z
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 row = grad.vec3(std::string(1, char('x' + i)), Vec3{0, 0, 0});
+      for (int j = 0; j < 3; ++j) s.initial.velocity_gradient[3 * i + j] = row[j];
+    }
+    grad.done();
     ic.done();
   }
   {

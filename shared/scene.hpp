@@ -1,6 +1,7 @@
 // The scene: one YAML input deck, validated in one place (scene.cpp), echoed resolved by rkprep.
 // Every key is documented in docs/scene.md. Units are SI except geometry.unit (the CAD's length unit).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -84,7 +85,8 @@ struct Scene {
   Material material;
 
   struct Initial {
-    Vec3 velocity{};          // m/s, uniform
+    Vec3 velocity{};          // m/s, at X = 0
+    std::array<double, 9> velocity_gradient{};  // 1/s, row-major d v_i / d X_j: v = velocity + G X
   } initial;
 
   struct Loads {

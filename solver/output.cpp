@@ -75,14 +75,24 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
         partial_[kProjected * std::size_t(md.nbr[k]) + c] += scale[c].fixed(md.weight[g] * md.N[k] * q[kProjected * g + c]);
   exchange_.sum(partial_);
 
+  // Displacements: u^h(X_I) = sum_J N_J(X_I) d_J where the row is known (the constrained particles,
+  // where the exact method holds it on the boundary condition), the coefficient d_I elsewhere.
+  std::vector<std::int32_t> row(md.n, -1);
+  for (std::size_t q = 0; q < md.ebc_particles.size(); ++q) row[md.ebc_particles[q]] = std::int32_t(q);
   std::vector<std::int64_t> gid;
   std::vector<double> x, u, v, ep, vm, pr;
   for (std::size_t I = 0; I < md.n; ++I) {
     if (!md.owned[I]) continue;
     gid.push_back(md.global_id[I]);
+    double uh[3] = {st.u[3 * I], st.u[3 * I + 1], st.u[3 * I + 2]};
+    if (row[I] >= 0) {
+      uh[0] = uh[1] = uh[2] = 0;
+      for (auto k = md.ebc_offsets[row[I]]; k < md.ebc_offsets[row[I] + 1]; ++k)
+        for (int i = 0; i < 3; ++i) uh[i] += md.ebc_N[k] * st.u[3 * md.ebc_cols[k] + i];
+    }
     for (int i = 0; i < 3; ++i) {
-      x.push_back(md.X[3 * I + i] + st.u[3 * I + i]);
-      u.push_back(st.u[3 * I + i]);
+      x.push_back(md.X[3 * I + i] + uh[i]);
+      u.push_back(uh[i]);
       v.push_back(velocity[3 * I + i]);
     }
     const double w = scale[0].real(partial_[kProjected * I]);

@@ -88,7 +88,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   comm.check(md.dies.size() == scene.dies.size(), "the subdomain files hold " + std::to_string(md.dies.size()) +
                                                       " dies but the scene declares " + std::to_string(scene.dies.size()) +
                                                       "; re-run rkprep");
-  State st = State::initial(md, scene.initial.velocity.data());
+  State st = State::initial(md, scene.initial.velocity.data(), scene.initial.velocity_gradient.data());
   compute_deformation_gradient(md, st);
   double dt0 = stable_time_step(md, st, scene.time.cfl).dt;
   comm.min(&dt0, 1);
@@ -121,7 +121,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   OverlapExchange exchange(md, 3);
   std::vector<double> v_old(st.v.size());
   std::vector<double> row(columns.size(), 0.0), wall_force(scene.rigid_walls.size(), 0.0);
-  std::vector<double> sums(5 + scene.rigid_walls.size() + 5 * scene.dies.size() + ebc->reactions().size());  // see the history row
+  std::vector<double> sums(6 + scene.rigid_walls.size() + 5 * scene.dies.size() + ebc->reactions().size());  // see the history row
   double max_ebc_error = 0;
   double part_lo[3] = {1e300, 1e300, 1e300}, part_hi[3] = {-1e300, -1e300, -1e300};  // the part's initial box
   for (std::size_t I = 0; I < md.n; ++I)
@@ -246,10 +246,11 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       Energies e = compute_energies(md, st, v_old, comm);
       // Global sums for the row, laid out as: the scalars below, one force per rigid wall, then
       // (contacts, fx, fy, fz, press work) per die, then (fx, fy, fz) per fixed or prescribed face.
-      enum { kContacts, kSprings, kFriction, kDieWork, kVolume, kScalars };
+      enum { kContacts, kSprings, kFriction, kDieWork, kVolume, kEbcWork, kScalars };
       const std::size_t walls = wall_force.size(), die0 = kScalars + walls;
       std::fill(sums.begin(), sums.end(), 0.0);
       sums[kContacts] = double(contacts);
+      sums[kEbcWork] = ebc->step_work();
       for (std::size_t g = 0; g < md.m; ++g) sums[kVolume] += md.weight[g] * st.J[g];
       for (std::size_t w = 0; w < walls; ++w) sums[kScalars + w] = wall_force[w];
       double pen = 0;
@@ -269,6 +270,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       pen = worst[0];
       max_ebc_error = std::max(max_ebc_error, worst[1]);
       e.contact += sums[kDieWork];
+      e.external -= 0.5 * sums[kEbcWork];
       e.internal += sums[kSprings];  // penalty springs store energy like the material
       last_error = energy_error(e, kinetic0);
       const double ratio = e.internal > 0 ? e.kinetic / e.internal : 0.0;

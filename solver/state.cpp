@@ -2,12 +2,14 @@
 
 namespace rk {
 
-State State::initial(const Model& md, const double velocity[3]) {
+State State::initial(const Model& md, const double velocity[3], const double gradient[9]) {
   State st;
   st.u.assign(3 * md.n, 0.0);
   st.v.resize(3 * md.n);
   for (std::size_t I = 0; I < md.n; ++I)
-    for (int i = 0; i < 3; ++i) st.v[3 * I + i] = velocity[i];
+    for (int i = 0; i < 3; ++i)
+      st.v[3 * I + i] = velocity[i] + gradient[3 * i] * md.X[3 * I] + gradient[3 * i + 1] * md.X[3 * I + 1] +
+                        gradient[3 * i + 2] * md.X[3 * I + 2];
   st.force.assign(3 * md.n, 0.0);
   st.partial.assign(3 * md.n, int128(0));
   st.F.assign(9 * md.m, 0.0);

@@ -35,7 +35,8 @@ struct State {
   double contact_work = 0, external_work = 0;
   std::int64_t contacts = 0;
 
-  static State initial(const Model& md, const double velocity[3]);
+  // v_I = velocity + gradient X_I (gradient row-major: d v_i / d X_j)
+  static State initial(const Model& md, const double velocity[3], const double gradient[9]);
 };
 
 }  // namespace rk

@@ -42,6 +42,16 @@ ConstraintFactor::ConstraintFactor(const ConstraintRows& A, Backend backend) : i
     cholmod_sparse* S = cholmod_l_copy(full, 1, 1, &m.cc);          // symmetric, upper part
     m.L = cholmod_l_analyze(S, &m.cc);
     ok = m.L && cholmod_l_factorize(S, m.L, &m.cc) && m.cc.status == CHOLMOD_OK && m.L->minor == std::size_t(m.n);
+    // a pivot that lost all but 1e-10 of its row's weight: a constraint that repeats others
+    const auto* Lp = static_cast<const SuiteSparse_long*>(ok ? m.L->p : nullptr);
+    const auto* Lx = static_cast<const double*>(ok ? m.L->x : nullptr);
+    const auto* Perm = static_cast<const SuiteSparse_long*>(ok ? m.L->Perm : nullptr);
+    for (std::int64_t j = 0; ok && j < m.n; ++j) {
+      const std::int64_t a = Perm ? Perm[j] : j;
+      double Saa = 0;
+      for (auto k = A.offsets[a]; k < A.offsets[a + 1]; ++k) Saa += A.val[k] * A.val[k];
+      ok = Lx[Lp[j]] * Lx[Lp[j]] > 1e-10 * Saa;
+    }
     if (m.L) {
       cholmod_factor* Lc = cholmod_l_copy_factor(m.L, &m.cc);
       cholmod_sparse* Ls = cholmod_l_factor_to_sparse(Lc, &m.cc);
@@ -53,7 +63,7 @@ ConstraintFactor::ConstraintFactor(const ConstraintRows& A, Backend backend) : i
     cholmod_l_free_sparse(&full, &m.cc);
     cholmod_l_free_sparse(&Am, &m.cc);
   } else {
-    m.QR = SuiteSparseQR_factorize<double>(SPQR_ORDERING_DEFAULT, SPQR_NO_TOL, At, &m.cc);
+    m.QR = SuiteSparseQR_factorize<double>(SPQR_ORDERING_DEFAULT, SPQR_DEFAULT_TOL, At, &m.cc);
     ok = m.QR && m.QR->rank == m.n;
     factor_nnz_ = std::int64_t(m.cc.SPQR_istat[0]);  // nnz(R), as SPQR counts it
   }

@@ -42,14 +42,14 @@ std::vector<Candidate> candidates(const Model& md, std::size_t I, const Scene& s
   for (int f = 0; f < fixed; ++f)
     if (on_plane(md, I, scene.fixed_faces[f].point, scene.fixed_faces[f].normal)) {
       for (int d = 0; d < 3; ++d) out.push_back({Eigen::Vector3d::Unit(d), 0.0, -1, f});
-      names.push_back(scene.fixed_faces[f].name);
+      names.push_back("fixed face '" + scene.fixed_faces[f].name + "'");
     }
   for (int p = 0; p < int(scene.prescribed_faces.size()); ++p) {
     const EssentialFace& face = scene.prescribed_faces[p];
     if (on_plane(md, I, face.point, face.normal)) {
       const Vec3& d = face.motion.direction;
       out.push_back({Eigen::Vector3d(d[0], d[1], d[2]), 1.0, p, fixed + p});
-      names.push_back(face.name);
+      names.push_back("prescribed face '" + face.name + "'");
     }
   }
   for (const auto& pl : scene.symmetry_planes)
@@ -66,8 +66,8 @@ std::vector<Candidate> orthonormalize(const Model& md, std::size_t I, std::vecto
   std::vector<Candidate> out;
   auto conflict = [&] {
     std::string list;
-    for (const auto& n : names) list += (list.empty() ? "'" : ", '") + n + "'";
-    return Error(where(md, I) + " lies on faces " + list +
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    return Error(where(md, I) + " lies on " + list +
                  " that prescribe different motions along one direction; separate the faces");
   };
   for (Candidate c : in) {

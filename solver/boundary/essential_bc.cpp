@@ -134,8 +134,10 @@ double EssentialBcs::value(const Model& md, std::int32_t k, double t, bool rate)
 void EssentialBcs::apply(const Model& md, State& st, double t_next, double dt, double dt_avg,
                          const std::vector<double>& v_old) {
   std::fill(reaction_.begin(), reaction_.end(), 0.0);
+  const double work0 = st.external_work;
   if (exact()) apply_exact(md, st, t_next, dt, dt_avg, v_old);
   else apply_nodal(md, st, t_next, dt, dt_avg, v_old);
+  step_work_ = st.external_work - work0;
 }
 
 void EssentialBcs::apply_nodal(const Model& md, State& st, double t_next, double dt, double dt_avg,

@@ -36,6 +36,9 @@ class EssentialBcs {
   // Reaction force on the modeled part per reported face (fixed, then prescribed), this rank's
   // share, 3 per face (N), from the last apply.
   const std::vector<double>& reactions() const { return reaction_; }
+  // This rank's work of the last apply's impulses: at a history row the energy balance counts half
+  // of it (the kinetic energy there is taken at the mid-step velocity).
+  double step_work() const { return step_work_; }
   std::int64_t constraints() const { return rows_; }
   bool exact() const { return factor_ != nullptr; }
 
@@ -47,6 +50,7 @@ class EssentialBcs {
   const Comm& comm_;
   std::vector<DieMotion> motions_;  // of the prescribed faces
   std::vector<double> reaction_;
+  double step_work_ = 0;
   std::int64_t rows_ = 0;  // constrained directions over all ranks
 
   // transformation: the global particles' directions, this rank's rows and column corrections

@@ -1,6 +1,6 @@
 """Short runs of the two forming scenes of the seed (BENCHMARKS.md cases 4 and 5) at a coarse spacing:
 back extrusion on 2 ranks bitwise equal to 1 rank (die contact with friction across the partition);
-the wheel-forging sector keeps its cut faces on their non-axis-aligned symmetry planes, conserves
+the wheel-forging sector keeps its cut faces on their non-axis-aligned symmetry planes (exact EBCs), conserves
 volume and energy, and forming_report.py writes its numbers and pictures."""
 import json
 import subprocess
@@ -28,9 +28,11 @@ rkcase.check(frames[1][2].max() > 0, f"back extrusion: the punch deforms the bil
 rkcase.check(all(np.array_equal(a, b) for a, b in zip(frames[1], frames[2])),
              "back extrusion with friction: 2 ranks bitwise equal to 1 rank")
 
-# Wheel forging sector: 0.3 mm of stroke.
+# Wheel forging sector: 0.3 mm of stroke, exact symmetry planes (issue 5: the nodal ones let the cut
+# faces drift by ~3 % of their motion, measured in essential_bcs.py).
 c = tools.case("wheel_forging")
-tools.prep(c, 2, scene=geometry / "wheel_forging" / "scene.yaml", sets=["discretization.spacing=4e-3"])
+tools.prep(c, 2, scene=geometry / "wheel_forging" / "scene.yaml",
+           sets=["discretization.spacing=4e-3", "discretization.ebc_method=transformation"])
 tools.solve(c, 2, sets=["time.end=30e-6", "time.output_interval=10e-6"])
 tools.post(c)
 first = meshio.read(c / "vtk" / "frame_00000.vtu")
