@@ -90,8 +90,7 @@ int run(int argc, char** argv) {
   });
   const auto cell_rank = timer.run("partition", [&] { return rk::partition_cells(mesh, disc, ranks, partitioner); });
   const auto subs = timer.run("subdomains", [&] {
-    return rk::build_subdomains({mesh, disc, cell_rank, ranks, scene.discretization.dilation, scene.prep_hash, dies,
-                                scene.discretization.ebc_method == "transformation"});
+    return rk::build_subdomains({mesh, disc, cell_rank, ranks, scene.discretization.dilation, scene.prep_hash, dies});
   });
   const auto report = rk::partition_report(subs, mesh.node_count());
   timer.run("write", [&] {

@@ -69,15 +69,14 @@ std::vector<Subdomain> build_subdomains(const SubdomainRequest& r) {
       grid.covering(&r.disc.point_X[3 * g], found);
       for (auto I : found) mark(I);
     }
-    // Exact essential BCs: the owner of a surface particle evaluates every shape function at it
-    // (the transformation's row), so the particle's whole support must be local too.
-    if (r.surface_supports)
-      for (std::size_t I = 0; I < n; ++I)
-        if (owner[I] == q && r.mesh.surface[I]) {
-          found.clear();
-          grid.covering(&r.mesh.X[3 * I], found);
-          for (auto J : found) mark(J);
-        }
+    // Essential BCs: the owner of a surface particle evaluates every shape function at it (the
+    // transformation's row, u^h(X_I) in the output), so the particle's whole support is local too.
+    for (std::size_t I = 0; I < n; ++I)
+      if (owner[I] == q && r.mesh.surface[I]) {
+        found.clear();
+        grid.covering(&r.mesh.X[3 * I], found);
+        for (auto J : found) mark(J);
+      }
     std::sort(local[q].begin(), local[q].end());
   }
   // Which ranks hold each particle (ascending rank).

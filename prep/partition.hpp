@@ -1,6 +1,7 @@
 // Seed section 4.1: partition INTEGRATION CELLS (METIS on the cells' dual graph, weighted by their
-// integration points); each rank's local particles are those in the supports of its points, each
-// particle has one owner, and per-neighbour overlap maps list the shared particles (seed Fig. 3).
+// integration points); each rank's local particles are those in the supports of its points (and
+// of its owned surface particles, for the essential BCs), each particle has one owner, and
+// per-neighbour overlap maps list the shared particles (seed Fig. 3).
 #pragma once
 #include <nlohmann/json.hpp>
 
@@ -25,7 +26,6 @@ struct SubdomainRequest {
   double dilation;
   std::string scene_hash;
   const std::vector<DieSurface>& dies;
-  bool surface_supports = false;  // also the supports of the owned surface particles (exact EBCs)
 };
 
 std::vector<Subdomain> build_subdomains(const SubdomainRequest& request);

@@ -91,7 +91,8 @@ def tradeoffs():
         knobs += [("kernel quartic", ["discretization.kernel=quartic_spline"], []),
                   ("basis quadratic", ["discretization.basis=quadratic", "discretization.dilation=2.5"], []),
                   ("gauss 1", ["discretization.gauss_order=1"], []), ("gauss 3", ["discretization.gauss_order=3"], []),
-                  ("no F-bar", ["discretization.volumetric=none"], [])]
+                  ("no F-bar", ["discretization.volumetric=none"], []),
+                  ("ebc transformation", ["discretization.ebc_method=transformation"], [])]
         knobs += [(f"cfl {c}", [], [f"time.cfl={c}"]) for c in (0.1, 0.25, 0.75, 0.9)]
     cases = [Case("taylor_" + k.replace(" ", "_"), **taylor(h, end, *s, prep=p), label=k) for k, p, s in knobs]
     for k in ([0.25] if SMOKE else [0.05, 0.1, 0.25, 0.5, 1.0]):
@@ -121,6 +122,8 @@ def features():
              Case("taylor_elastic", **taylor(h, end, "initial_conditions.velocity=[0,0,-227]", scene=TAYLOR_ELASTIC),
                   label="elastic only")]
     if not SMOKE:
+        cases.append(Case("taylor_exact_ebc", **taylor(h, end, prep=["discretization.ebc_method=transformation"]),
+                          label="exact symmetry planes"))
         cases.append(Case("taylor_output_often", **taylor(h, end, f"time.output_interval={end / 100}e-6"),
                           label="output every 1 %"))
         for k, scene in (("frictionless", UPSET), ("friction 0.12", UPSET_FRICTION)):

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <vector>
 
 #include "error.hpp"
 
@@ -16,7 +17,11 @@ struct ConstraintFactor::Impl {
   std::int64_t n = 0;
   cholmod_factor* L = nullptr;                          // cholmod
   SuiteSparseQR_factorization<double>* QR = nullptr;    // spqr
-  cholmod_dense *b = nullptr, *x = nullptr, *Y = nullptr, *E = nullptr;
+  cholmod_dense* b = nullptr;  // spqr right-hand side
+  // cholmod: L (columns sorted, diagonal first) and the fill-reducing order, solved by hand: two
+  // plain triangular sweeps (no workspace, nothing allocated per step)
+  std::vector<SuiteSparse_long> Lp, Li, perm;
+  std::vector<double> Lx, y;
 };
 
 ConstraintFactor::ConstraintFactor(const ConstraintRows& A, Backend backend) : impl_(new Impl) {
@@ -52,10 +57,20 @@ ConstraintFactor::ConstraintFactor(const ConstraintRows& A, Backend backend) : i
       for (auto k = A.offsets[a]; k < A.offsets[a + 1]; ++k) Saa += A.val[k] * A.val[k];
       ok = Lx[Lp[j]] * Lx[Lp[j]] > 1e-10 * Saa;
     }
-    if (m.L) {
+    if (ok) {
       cholmod_factor* Lc = cholmod_l_copy_factor(m.L, &m.cc);
       cholmod_sparse* Ls = cholmod_l_factor_to_sparse(Lc, &m.cc);
-      factor_nnz_ = Ls ? std::int64_t(cholmod_l_nnz(Ls, &m.cc)) : 0;
+      const auto* p = static_cast<const SuiteSparse_long*>(Ls->p);
+      const auto* i = static_cast<const SuiteSparse_long*>(Ls->i);
+      const auto* x = static_cast<const double*>(Ls->x);
+      m.Lp.assign(p, p + m.n + 1);
+      m.Li.assign(i, i + p[m.n]);
+      m.Lx.assign(x, x + p[m.n]);
+      const auto* P = static_cast<const SuiteSparse_long*>(m.L->Perm);
+      m.perm.resize(std::size_t(m.n));
+      for (std::int64_t j = 0; j < m.n; ++j) m.perm[j] = P ? P[j] : j;
+      m.y.resize(std::size_t(m.n));
+      factor_nnz_ = std::int64_t(p[m.n]);
       cholmod_l_free_sparse(&Ls, &m.cc);
       cholmod_l_free_factor(&Lc, &m.cc);
     }
@@ -82,7 +97,7 @@ ConstraintFactor::~ConstraintFactor() { release(); }
 void ConstraintFactor::release() {
   if (!impl_) return;
   Impl& m = *impl_;
-  for (cholmod_dense** d : {&m.b, &m.x, &m.Y, &m.E}) cholmod_l_free_dense(d, &m.cc);
+  cholmod_l_free_dense(&m.b, &m.cc);
   cholmod_l_free_factor(&m.L, &m.cc);
   if (m.QR) SuiteSparseQR_free(&m.QR, &m.cc);
   cholmod_l_finish(&m.cc);
@@ -92,12 +107,21 @@ void ConstraintFactor::release() {
 
 void ConstraintFactor::solve(const double* rhs, double* lambda) {
   Impl& m = *impl_;
-  std::memcpy(m.b->x, rhs, sizeof(double) * std::size_t(m.n));
-  if (m.backend == Backend::cholmod) {
-    cholmod_l_solve2(CHOLMOD_A, m.L, m.b, nullptr, &m.x, nullptr, &m.Y, &m.E, &m.cc);
-    std::memcpy(lambda, m.x->x, sizeof(double) * std::size_t(m.n));
+  if (m.backend == Backend::cholmod) {  // S = P^T L L^T P
+    double* y = m.y.data();
+    for (std::int64_t j = 0; j < m.n; ++j) y[j] = rhs[m.perm[j]];
+    for (std::int64_t j = 0; j < m.n; ++j) {
+      y[j] /= m.Lx[m.Lp[j]];
+      for (auto k = m.Lp[j] + 1; k < m.Lp[j + 1]; ++k) y[m.Li[k]] -= m.Lx[k] * y[j];
+    }
+    for (std::int64_t j = m.n - 1; j >= 0; --j) {
+      for (auto k = m.Lp[j] + 1; k < m.Lp[j + 1]; ++k) y[j] -= m.Lx[k] * y[m.Li[k]];
+      y[j] /= m.Lx[m.Lp[j]];
+    }
+    for (std::int64_t j = 0; j < m.n; ++j) lambda[m.perm[j]] = y[j];
     return;
   }
+  std::memcpy(m.b->x, rhs, sizeof(double) * std::size_t(m.n));
   cholmod_dense* y = SuiteSparseQR_solve(SPQR_RTX_EQUALS_ETB, m.QR, m.b, &m.cc);  // R^T y = E^T b
   cholmod_dense* z = SuiteSparseQR_solve(SPQR_RETX_EQUALS_B, m.QR, y, &m.cc);     // R E^T z = y
   std::memcpy(lambda, z->x, sizeof(double) * std::size_t(m.n));

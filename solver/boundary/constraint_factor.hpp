@@ -6,7 +6,8 @@
 // S is symmetric positive definite (one row per constrained direction, rows independent) and
 // fixed in the total-Lagrangian setting, so it is factorized once; a step costs two sparse
 // triangular solves. Two backends, measured against each other in tests/unit/test_constraint_factor:
-//   cholmod  sparse Cholesky of S = L L^T (simplicial: no BLAS, so bitwise the same on every rank)
+//   cholmod  sparse Cholesky of S = L L^T (simplicial: no BLAS, so bitwise the same on every rank),
+//          solved with two plain triangular sweeps over L
 //   spqr     sparse QR of A^T = Q R, S = R^T R (never forms S; better conditioned, slower)
 #pragma once
 #include <cstdint>
@@ -31,7 +32,7 @@ class ConstraintFactor {
   ConstraintFactor(const ConstraintFactor&) = delete;
   ConstraintFactor& operator=(const ConstraintFactor&) = delete;
 
-  // lambda = S^{-1} rhs (both of length rows). The cholmod backend reuses its workspace.
+  // lambda = S^{-1} rhs (both of length rows). The cholmod backend allocates nothing.
   void solve(const double* rhs, double* lambda);
   std::int64_t factor_nonzeros() const { return factor_nnz_; }
 
