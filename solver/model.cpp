@@ -7,34 +7,22 @@
 
 #include "boundary/constraints.hpp"
 #include "error.hpp"
-#include "neighbour_grid.hpp"
-#include "rk_shape.hpp"
+#include "local_shapes.hpp"
 
 namespace rk {
 namespace {
 
 void build_shape_functions(Model& md, const Subdomain& sub, const Scene& scene) {
-  std::vector<double> radius(md.n);
-  for (std::size_t I = 0; I < md.n; ++I) radius[I] = scene.discretization.dilation * md.spacing[I];
-  NeighbourGrid grid(md.X.data(), radius.data(), md.n);
-  const RkParticles particles{md.X.data(), sub.volume.data(), radius.data()};
-  const Kernel kernel = parse_kernel(scene.discretization.kernel);
-  const Basis basis = parse_basis(scene.discretization.basis);
+  const LocalShapes shapes(md.X, sub.volume, md.spacing, scene);
   md.nbr_offsets.assign(1, 0);
   md.dN_max.resize(md.m);
-  std::vector<std::int32_t> found;
   for (std::size_t g = 0; g < md.m; ++g) {
-    found.clear();
-    grid.covering(&sub.point_X[3 * g], found);  // ascending local index = ascending global id
     const std::size_t k0 = md.nbr.size();
-    md.nbr.insert(md.nbr.end(), found.begin(), found.end());
-    md.N.resize(md.nbr.size());
-    md.dN.resize(3 * md.nbr.size());
-    const RkResult r = rk_shape(&sub.point_X[3 * g], found, particles, kernel, basis, &md.N[k0], &md.dN[3 * k0]);
+    const RkResult r = shapes.append(&sub.point_X[3 * g], md.nbr, md.N, md.dN);  // ascending global id
     if (!r.regular) {
       std::ostringstream s;
       s << "rank " << md.rank << ": the RK moment matrix is singular at the integration point at (" << sub.point_X[3 * g]
-        << ", " << sub.point_X[3 * g + 1] << ", " << sub.point_X[3 * g + 2] << ") m with " << found.size()
+        << ", " << sub.point_X[3 * g + 1] << ", " << sub.point_X[3 * g + 2] << ") m with " << md.nbr.size() - k0
         << " particles in its support (rcond " << r.rcond << "); increase discretization.dilation";
       throw Error(s.str());
     }

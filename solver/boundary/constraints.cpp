@@ -6,8 +6,7 @@
 
 #include "error.hpp"
 #include "model.hpp"
-#include "neighbour_grid.hpp"
-#include "rk_shape.hpp"
+#include "local_shapes.hpp"
 
 namespace rk {
 namespace {
@@ -100,14 +99,8 @@ void build_constraints(Model& md, const Subdomain& sub, const Scene& scene) {
   md.ebc_offsets.assign(1, 0);
   md.face_particles.assign(reported_faces(scene) + scene.symmetry_planes.size(), 0);
 
-  std::vector<double> radius(md.n);
-  for (std::size_t I = 0; I < md.n; ++I) radius[I] = scene.discretization.dilation * md.spacing[I];
-  NeighbourGrid grid(md.X.data(), radius.data(), md.n);
-  const RkParticles particles{md.X.data(), sub.volume.data(), radius.data()};
-  const Kernel kernel = parse_kernel(scene.discretization.kernel);
-  const Basis basis = parse_basis(scene.discretization.basis);
+  const LocalShapes shapes(md.X, sub.volume, md.spacing, scene);
   std::vector<std::string> names;
-  std::vector<std::int32_t> found;
   std::vector<double> dN;
   for (std::size_t I = 0; I < md.n; ++I) {
     const std::vector<Candidate> dirs = orthonormalize(md, I, candidates(md, I, scene, names), names);
@@ -131,14 +124,7 @@ void build_constraints(Model& md, const Subdomain& sub, const Scene& scene) {
     for (std::size_t s = 0; s < scene.symmetry_planes.size(); ++s)
       md.face_particles[reported_faces(scene) + s] +=
           on_plane(md, I, scene.symmetry_planes[s].point, scene.symmetry_planes[s].normal);
-    found.clear();
-    grid.covering(&md.X[3 * I], found);
-    const std::size_t k0 = md.ebc_cols.size();
-    md.ebc_cols.insert(md.ebc_cols.end(), found.begin(), found.end());
-    md.ebc_N.resize(md.ebc_cols.size());
-    dN.resize(3 * found.size());
-    const RkResult r = rk_shape(&md.X[3 * I], found, particles, kernel, basis, &md.ebc_N[k0], dN.data());
-    if (!r.regular)
+    if (!shapes.append(&md.X[3 * I], md.ebc_cols, md.ebc_N, dN).regular)
       throw Error("the RK moment matrix is singular at the constrained " + where(md, I) +
                   "; increase discretization.dilation");
     md.ebc_particles.push_back(std::int32_t(I));

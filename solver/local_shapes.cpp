@@ -1,0 +1,33 @@
+#include "local_shapes.hpp"
+
+namespace rk {
+namespace {
+
+std::vector<double> radii(const std::vector<double>& spacing, double dilation) {
+  std::vector<double> r(spacing.size());
+  for (std::size_t I = 0; I < r.size(); ++I) r[I] = dilation * spacing[I];
+  return r;
+}
+
+}  // namespace
+
+LocalShapes::LocalShapes(const std::vector<double>& X, const std::vector<double>& volume,
+                         const std::vector<double>& spacing, const Scene& scene)
+    : radius_(radii(spacing, scene.discretization.dilation)),
+      grid_(X.data(), radius_.data(), spacing.size()),
+      particles_{X.data(), volume.data(), radius_.data()},
+      kernel_(parse_kernel(scene.discretization.kernel)),
+      basis_(parse_basis(scene.discretization.basis)) {}
+
+RkResult LocalShapes::append(const double x[3], std::vector<std::int32_t>& cols, std::vector<double>& N,
+                             std::vector<double>& dN) const {
+  found_.clear();
+  grid_.covering(x, found_);
+  const std::size_t k0 = cols.size();
+  cols.insert(cols.end(), found_.begin(), found_.end());
+  N.resize(cols.size());
+  dN.resize(3 * cols.size());
+  return rk_shape(x, found_, particles_, kernel_, basis_, &N[k0], &dN[3 * k0]);
+}
+
+}  // namespace rk
