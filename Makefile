@@ -14,7 +14,8 @@ DEMO  ?= $(BUILD)/demo/taylor_bar
 
 DEB_PACKAGES := build-essential cmake pkg-config libmetis-dev libsuitesparse-dev libeigen3-dev \
   libopenmpi-dev openmpi-bin libgmsh-dev libcgal-dev libhdf5-dev hdf5-tools libyaml-cpp-dev \
-  nlohmann-json3-dev libcli11-dev libgtest-dev python3-meshio python3-numpy python3-matplotlib python3-yaml
+  nlohmann-json3-dev libcli11-dev libgtest-dev python3-meshio python3-numpy python3-matplotlib python3-yaml \
+  python3-h5py python3-paraview xvfb xauth zlib1g-dev
 
 export OMPI_ALLOW_RUN_AS_ROOT := 1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1

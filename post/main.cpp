@@ -1,5 +1,5 @@
 // rkpost: merge the ranks' result frames into one .vtu per frame and a .pvd time series.
-//   rkpost CASE
+//   rkpost CASE [--frames 0,4,-1] [--fields eq_plastic_strain,stress] [--uncompressed]
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numeric>
+#include <sstream>
 
 #include "cli.hpp"
 #include "h5file.hpp"
@@ -19,13 +20,20 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The particle fields of a result frame (solver/output.cpp), written as ParaView point data.
+struct Field {
+  const char* name;
+  int components;
+};
+constexpr Field kFields[] = {{"displacement", 3}, {"velocity", 3},  {"eq_plastic_strain", 1},
+                             {"von_mises", 1},    {"pressure", 1},  {"stress", 6}};  // stress: Cauchy, xx yy zz xy yz zx
+
 struct Frame {
   double time = 0;
   std::vector<std::int64_t> gid, rank;
-  std::vector<double> x, u, v, ep, vm, p;
+  std::vector<double> x;
+  std::vector<std::vector<double>> values;  // per selected field
 };
-
-void append(std::vector<double>& to, const std::vector<double>& from) { to.insert(to.end(), from.begin(), from.end()); }
 
 // CASE/results/rank_NNNN/frame_FFFFF.h5 (one file per rank and frame, written whole or not at all)
 std::string frame_file(const std::string& case_dir, int rank, int frame) {
@@ -34,8 +42,9 @@ std::string frame_file(const std::string& case_dir, int rank, int frame) {
   return case_dir + name;
 }
 
-Frame read_frame(const std::string& case_dir, int ranks, int f) {
+Frame read_frame(const std::string& case_dir, int ranks, int f, const std::vector<Field>& fields) {
   Frame fr;
+  fr.values.resize(fields.size());
   char group[32];
   std::snprintf(group, sizeof group, "frames/%05d/", f);
   const std::string g(group);
@@ -47,18 +56,18 @@ Frame read_frame(const std::string& case_dir, int ranks, int f) {
     auto gid = h.read<std::int64_t>(g + "global_id");
     fr.rank.insert(fr.rank.end(), gid.size(), std::int64_t(r));
     fr.gid.insert(fr.gid.end(), gid.begin(), gid.end());
-    append(fr.x, h.read<double>(g + "x", 3));
-    append(fr.u, h.read<double>(g + "displacement", 3));
-    append(fr.v, h.read<double>(g + "velocity", 3));
-    append(fr.ep, h.read<double>(g + "eq_plastic_strain"));
-    append(fr.vm, h.read<double>(g + "von_mises"));
-    append(fr.p, h.read<double>(g + "pressure"));
+    const auto x = h.read<double>(g + "x", 3);
+    fr.x.insert(fr.x.end(), x.begin(), x.end());
+    for (std::size_t k = 0; k < fields.size(); ++k) {
+      const auto v = h.read<double>(g + fields[k].name, std::size_t(fields[k].components));
+      fr.values[k].insert(fr.values[k].end(), v.begin(), v.end());
+    }
   }
   return fr;
 }
 
 // Reorders by global id and checks that every particle appears exactly once.
-void sort_by_global_id(Frame& fr, const std::string& where) {
+void sort_by_global_id(Frame& fr, const std::vector<Field>& fields, const std::string& where) {
   const std::size_t n = fr.gid.size();
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
@@ -72,16 +81,79 @@ void sort_by_global_id(Frame& fr, const std::string& where) {
     for (std::size_t k = 0; k < n; ++k)
       for (int c = 0; c < w; ++c) a[w * k + c] = b[w * order[k] + c];
   };
-  permute(fr.gid, 1), permute(fr.rank, 1), permute(fr.x, 3), permute(fr.u, 3), permute(fr.v, 3);
-  permute(fr.ep, 1), permute(fr.vm, 1), permute(fr.p, 1);
+  permute(fr.gid, 1), permute(fr.rank, 1), permute(fr.x, 3);
+  for (std::size_t k = 0; k < fields.size(); ++k) permute(fr.values[k], fields[k].components);
+}
+
+// The integration cells of every rank (hexahedra or tetrahedra on the particles, by global id),
+// with the rank that integrates each: the partition as the seed's Figs. 8c, 13 and 18 show it.
+std::pair<rk::VtuCells, std::vector<std::int64_t>> read_cells(const std::string& case_dir, int ranks,
+                                                              const std::string& prep_hash) {
+  rk::VtuCells cells;
+  std::vector<std::int64_t> owner;
+  for (int r = 0; r < ranks; ++r) {
+    const rk::Subdomain s = rk::read_subdomain(rk::subdomain_path(case_dir, r), r, ranks, prep_hash);
+    std::int64_t nodes[8];
+    for (std::size_t c = 0; c < s.cell_count(); ++c) {
+      const int count = s.cell_node_offsets[c + 1] - s.cell_node_offsets[c];
+      for (int k = 0; k < count; ++k) nodes[k] = s.global_id[s.cell_nodes[s.cell_node_offsets[c] + k]];
+      cells.add(nodes, count, count == 8 ? rk::kVtkHexahedron : rk::kVtkTetra);
+      owner.push_back(r);
+    }
+  }
+  return {cells, owner};
+}
+
+// --fields: a comma-separated subset of kFields ("all": every one).
+std::vector<Field> select_fields(const std::string& list) {
+  std::vector<Field> out;
+  if (list == "all") return {std::begin(kFields), std::end(kFields)};
+  std::stringstream ss(list);
+  for (std::string name; std::getline(ss, name, ',');) {
+    auto it = std::find_if(std::begin(kFields), std::end(kFields), [&](const Field& f) { return name == f.name; });
+    if (it == std::end(kFields)) {
+      std::string known;
+      for (const auto& f : kFields) known += std::string(known.empty() ? "" : ", ") + f.name;
+      throw rk::Error("--fields: '" + name + "' is not a field (known: " + known + ")");
+    }
+    out.push_back(*it);
+  }
+  return out;
+}
+
+// --frames: "all", or comma-separated frame numbers, negative ones counted from the end (-1: last).
+std::vector<int> select_frames(const std::string& list, int frames) {
+  std::vector<int> out;
+  if (list == "all") {
+    for (int f = 0; f < frames; ++f) out.push_back(f);
+    return out;
+  }
+  std::stringstream ss(list);
+  for (std::string item; std::getline(ss, item, ',');) {
+    char* end = nullptr;
+    const long k = std::strtol(item.c_str(), &end, 10);
+    const long f = k < 0 ? frames + k : k;
+    if (item.empty() || *end != '\0' || f < 0 || f >= frames)
+      throw rk::Error("--frames: '" + item + "' is not a frame of this case (0 to " + std::to_string(frames - 1) +
+                      ", or -1 for the last)");
+    if (std::find(out.begin(), out.end(), int(f)) == out.end()) out.push_back(int(f));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 int run(int argc, char** argv) {
   CLI::App app{"rkpost: merge the ranks' results into VTK files for ParaView (CASE/vtk/case.pvd)", "rkpost"};
   rk::add_version_flag(app);
   std::string case_dir;
-  bool quiet = false;
+  std::string frame_list = "all", field_list = "all";
+  bool quiet = false, uncompressed = false;
   app.add_option("case", case_dir, "case directory (after rksolve)")->required();
+  app.add_option("--frames", frame_list, "frames to write: all, or a list like 0,4,-1 (-1: the last)");
+  app.add_option("--fields", field_list,
+                 "point fields to write: all, or a list of displacement, velocity, eq_plastic_strain, von_mises, "
+                 "pressure, stress (global_id and rank are always written)");
+  app.add_flag("--uncompressed", uncompressed, "write the VTK arrays without zlib compression");
   app.add_flag("--quiet", quiet, "print nothing but errors");
   try {
     app.parse(argc, argv);
@@ -108,13 +180,16 @@ int run(int argc, char** argv) {
   std::vector<rk::DieSurface> dies;
   if (!scene.dies.empty())
     dies = rk::read_subdomain(rk::subdomain_path(case_dir, 0), 0, ranks, scene.prep_hash).dies;
+  const std::vector<Field> fields = select_fields(field_list);
+  const std::vector<int> chosen = select_frames(frame_list, int(frames));
+  const auto [cells, cell_rank] = read_cells(case_dir, ranks, scene.prep_hash);
   std::vector<rk::PvdEntry> index;
   int skipped = 0;
-  for (int f = 0; f < frames; ++f) {
+  for (int f : chosen) {
     Frame fr;
     try {  // a frame missing on a rank or half written is reported and skipped; the rest is merged
-      fr = read_frame(case_dir, ranks, f);
-      sort_by_global_id(fr, case_dir + " frame " + std::to_string(f));
+      fr = read_frame(case_dir, ranks, f, fields);
+      sort_by_global_id(fr, fields, case_dir + " frame " + std::to_string(f));
     } catch (const rk::Error& e) {
       std::fprintf(stderr, "rkpost: frame %d skipped: %s\n", f, e.what());
       ++skipped;
@@ -124,13 +199,9 @@ int run(int argc, char** argv) {
     std::snprintf(name, sizeof name, "frame_%05d.vtu", f);
     std::vector<rk::VtuArray> data;
     data.push_back({"global_id", 1, {}, fr.gid});
-    data.push_back({"displacement", 3, fr.u, {}});
-    data.push_back({"velocity", 3, fr.v, {}});
-    data.push_back({"eq_plastic_strain", 1, fr.ep, {}});
-    data.push_back({"von_mises", 1, fr.vm, {}});
-    data.push_back({"pressure", 1, fr.p, {}});
+    for (std::size_t k = 0; k < fields.size(); ++k) data.push_back({fields[k].name, fields[k].components, fr.values[k], {}});
     data.push_back({"rank", 1, {}, fr.rank});
-    rk::write_vtu(case_dir + "/vtk/" + name, fr.x, data);
+    rk::write_vtu(case_dir + "/vtk/" + name, fr.x, data, cells, {{"rank", 1, {}, cell_rank}}, !uncompressed);
     index.push_back({fr.time, 0, name});
     for (std::size_t k = 0; k < dies.size(); ++k) {
       const auto& die = scene.dies[k];
@@ -139,7 +210,7 @@ int run(int argc, char** argv) {
       for (std::size_t v = 0; v < x.size(); ++v) x[v] += stroke * die.motion.direction[v % 3];
       char file[160];
       std::snprintf(file, sizeof file, "die_%s_%05d.vtu", die.name.c_str(), f);
-      rk::write_vtu(case_dir + "/vtk/" + file, x, {}, dies[k].triangles);
+      rk::write_vtu(case_dir + "/vtk/" + file, x, {}, rk::VtuCells::triangles(dies[k].triangles), {}, !uncompressed);
       index.push_back({fr.time, int(k + 1), file});
     }
   }
@@ -147,7 +218,7 @@ int run(int argc, char** argv) {
   rk::write_report(case_dir);
   if (!quiet)
     std::printf("rkpost: %lld frames of %d ranks merged into %s/vtk/case.pvd (%d skipped, %zu dies)\n",
-                static_cast<long long>(frames - skipped), ranks, case_dir.c_str(), skipped, dies.size());
+                static_cast<long long>(chosen.size() - skipped), ranks, case_dir.c_str(), skipped, dies.size());
   return 0;
 }
 

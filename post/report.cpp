@@ -55,7 +55,27 @@ void write_report(const std::string& case_dir) {
   for (const auto& [name, t] : solve["phases"].items()) r << "| " << name << " | " << t["max_s"] << " |\n";
   r << "\n## Final values (history.csv)\n\n| quantity | value |\n|---|---|\n";
   for (std::size_t k = 0; k < names.size() && k < values.size(); ++k) r << "| " << names[k] << " | " << values[k] << " |\n";
-  r << "\n## Files\n\n- ParaView: `vtk/case.pvd` (the part and the dies over time)\n";
+  std::ifstream results_file(case_dir + "/plots/results.json");  // written by the scene's scripts
+  if (results_file) {
+    const auto results = nlohmann::json::parse(results_file, nullptr, false);
+    if (results.is_array()) {
+      r << "\n## Key results against the references\n\n| quantity | value | reference | difference | source |\n"
+        << "|---|---|---|---|---|\n";
+      for (const auto& q : results) {
+        const double v = q.value("value", 0.0);
+        r << "| " << q.value("quantity", "?") << " | " << v << " " << q.value("unit", "") << " | ";
+        if (q.contains("reference") && q["reference"].is_number()) {
+          const double ref = q["reference"].get<double>();
+          r << ref << " | " << (ref != 0 ? 100 * (v / ref - 1) : 0.0) << " % | ";
+        } else {
+          r << "- | - | ";
+        }
+        r << q.value("source", "") << " |\n";
+      }
+    }
+  }
+  r << "\n## Files\n\n- ParaView: `vtk/case.pvd` (the part, its integration cells with their rank, and the dies over "
+       "time)\n";
   if (fs::exists(case_dir + "/plots"))
     for (const auto& e : fs::directory_iterator(case_dir + "/plots"))
       if (e.path().extension() == ".png")

@@ -1,5 +1,8 @@
 #include "vtu_writer.hpp"
 
+#include <zlib.h>
+
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 
@@ -8,60 +11,113 @@
 namespace rk {
 namespace {
 
-std::string base64(const unsigned char* data, std::size_t n) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((n + 2) / 3 * 4);
-  for (std::size_t i = 0; i < n; i += 3) {
-    const unsigned v = (unsigned(data[i]) << 16) | (i + 1 < n ? unsigned(data[i + 1]) << 8 : 0u) |
-                       (i + 2 < n ? unsigned(data[i + 2]) : 0u);
-    out += table[(v >> 18) & 63];
-    out += table[(v >> 12) & 63];
-    out += i + 1 < n ? table[(v >> 6) & 63] : '=';
-    out += i + 2 < n ? table[v & 63] : '=';
-  }
-  return out;
-}
+// The arrays of one file, raw binary in the <AppendedData> block after the XML: each array is
+// [header][data], compressed: the header holds the block count, block size, last block size and the
+// compressed sizes, then the zlib blocks (vtkZLibDataCompressor).
+class Appended {
+ public:
+  explicit Appended(bool compress) : compress_(compress) {}
 
-template <class T>
-void data_array(std::ofstream& f, const char* type, const std::string& name, int components, const std::vector<T>& v) {
-  std::vector<unsigned char> bytes(8 + v.size() * sizeof(T));
-  const std::uint64_t size = v.size() * sizeof(T);
-  std::memcpy(bytes.data(), &size, 8);
-  if (!v.empty()) std::memcpy(bytes.data() + 8, v.data(), size);
-  f << "        <DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\"" << components
-    << "\" format=\"binary\">\n          " << base64(bytes.data(), bytes.size()) << "\n        </DataArray>\n";
+  template <class T>
+  void array(std::ostream& xml, const char* type, const std::string& name, int components, const std::vector<T>& v) {
+    xml << "        <DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\"" << components
+        << "\" format=\"appended\" offset=\"" << bytes_.size() << "\"/>\n";
+    const auto* raw = reinterpret_cast<const unsigned char*>(v.data());
+    const std::uint64_t size = v.size() * sizeof(T);
+    if (!compress_) {
+      put(&size, 8);
+      put(raw, size);
+      return;
+    }
+    constexpr std::uint64_t kBlock = 32768;
+    const std::uint64_t blocks = size == 0 ? 0 : (size + kBlock - 1) / kBlock;
+    std::vector<std::uint64_t> header{blocks, kBlock, blocks == 0 ? 0 : size - (blocks - 1) * kBlock};
+    const std::size_t at = bytes_.size();
+    bytes_.resize(at + 8 * (header.size() + blocks));  // the compressed sizes are filled in below
+    for (std::uint64_t b = 0; b < blocks; ++b) {
+      const std::uint64_t n = std::min(kBlock, size - b * kBlock);
+      uLongf out = compressBound(uLong(n));
+      const std::size_t start = bytes_.size();
+      bytes_.resize(start + out);
+      if (compress2(bytes_.data() + start, &out, raw + b * kBlock, uLong(n), 1) != Z_OK)
+        throw Error("zlib failed to compress the VTK array " + name);
+      bytes_.resize(start + out);
+      header.push_back(out);
+    }
+    std::memcpy(bytes_.data() + at, header.data(), 8 * header.size());
+  }
+
+  void write(std::ostream& f) const {
+    f << "  <AppendedData encoding=\"raw\">\n   _";
+    f.write(reinterpret_cast<const char*>(bytes_.data()), std::streamsize(bytes_.size()));
+    f << "\n  </AppendedData>\n";
+  }
+
+ private:
+  void put(const void* p, std::size_t n) {
+    const auto* c = static_cast<const unsigned char*>(p);
+    bytes_.insert(bytes_.end(), c, c + n);
+  }
+  bool compress_;
+  std::vector<unsigned char> bytes_;
+};
+
+void arrays(std::ostream& f, Appended& data, const std::vector<VtuArray>& list) {
+  for (const auto& a : list) {
+    if (!a.i64.empty() || a.f64.empty()) data.array(f, "Int64", a.name, a.components, a.i64);
+    else data.array(f, "Float64", a.name, a.components, a.f64);
+  }
 }
 
 }  // namespace
 
+void VtuCells::add(const std::int64_t* points, int count, std::uint8_t type) {
+  connectivity.insert(connectivity.end(), points, points + count);
+  offsets.push_back(std::int64_t(connectivity.size()));
+  types.push_back(type);
+}
+
+VtuCells VtuCells::vertices(std::size_t n) {
+  VtuCells c;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int64_t p = std::int64_t(i);
+    c.add(&p, 1, 1);
+  }
+  return c;
+}
+
+VtuCells VtuCells::triangles(const std::vector<std::int32_t>& corners) {
+  VtuCells c;
+  for (std::size_t t = 0; t + 2 < corners.size(); t += 3) {
+    const std::int64_t p[3] = {corners[t], corners[t + 1], corners[t + 2]};
+    c.add(p, 3, 5);
+  }
+  return c;
+}
+
 void write_vtu(const std::string& path, const std::vector<double>& points, const std::vector<VtuArray>& point_data,
-               const std::vector<std::int32_t>& triangles) {
-  const std::size_t n = points.size() / 3;
-  const std::size_t cells = triangles.empty() ? n : triangles.size() / 3;
+               const VtuCells& cells, const std::vector<VtuArray>& cell_data, bool compress) {
   const std::string tmp = path + ".tmp";
   {
-    std::ofstream f(tmp);
+    std::ofstream f(tmp, std::ios::binary);
     if (!f) throw Error(path + ": cannot write the VTK file");
+    Appended data(compress);
     f << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-         "header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\""
-      << n << "\" NumberOfCells=\"" << cells << "\">\n      <PointData>\n";
-    for (const auto& a : point_data) {
-      if (!a.i64.empty() || a.f64.empty()) data_array(f, "Int64", a.name, a.components, a.i64);
-      else data_array(f, "Float64", a.name, a.components, a.f64);
-    }
-    f << "      </PointData>\n      <Points>\n";
-    data_array(f, "Float64", "Points", 3, points);
+         "header_type=\"UInt64\""
+      << (compress ? " compressor=\"vtkZLibDataCompressor\"" : "") << ">\n  <UnstructuredGrid>\n    <Piece NumberOfPoints=\""
+      << points.size() / 3 << "\" NumberOfCells=\"" << cells.types.size() << "\">\n      <PointData>\n";
+    arrays(f, data, point_data);
+    f << "      </PointData>\n      <CellData>\n";
+    arrays(f, data, cell_data);
+    f << "      </CellData>\n      <Points>\n";
+    data.array(f, "Float64", "Points", 3, points);
     f << "      </Points>\n      <Cells>\n";
-    const int per = triangles.empty() ? 1 : 3;
-    std::vector<std::int64_t> conn(per * cells), offsets(cells);
-    std::vector<std::uint8_t> types(cells, triangles.empty() ? 1 : 5);  // VTK_VERTEX or VTK_TRIANGLE
-    for (std::size_t i = 0; i < per * cells; ++i) conn[i] = triangles.empty() ? std::int64_t(i) : triangles[i];
-    for (std::size_t c = 0; c < cells; ++c) offsets[c] = std::int64_t(per * (c + 1));
-    data_array(f, "Int64", "connectivity", 1, conn);
-    data_array(f, "Int64", "offsets", 1, offsets);
-    data_array(f, "UInt8", "types", 1, types);
-    f << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+    data.array(f, "Int64", "connectivity", 1, cells.connectivity);
+    data.array(f, "Int64", "offsets", 1, cells.offsets);
+    data.array(f, "UInt8", "types", 1, cells.types);
+    f << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n";
+    data.write(f);
+    f << "</VTKFile>\n";
     if (!f.flush()) throw Error(path + ": write failed (disk full?)");
   }
   std::rename(tmp.c_str(), path.c_str());

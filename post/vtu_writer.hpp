@@ -1,5 +1,7 @@
-// VTK XML UnstructuredGrid (.vtu) writer: one vertex cell per particle, binary (base64) arrays with
-// 64-bit headers, readable by ParaView, VTK and meshio. Plus the .pvd time-series index.
+// VTK XML UnstructuredGrid (.vtu) writer: raw appended binary arrays, zlib-compressed in 32 KiB blocks
+// (vtkZLibDataCompressor, 64-bit headers), readable by ParaView 5.11, VTK and meshio. Plus the .pvd
+// time-series index. Written directly rather than through VTK's writers: no VTK to build against
+// (libvtk9-dev conflicts with python3-paraview on Debian 12) for a format this small.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -15,9 +17,17 @@ struct VtuArray {
   std::vector<std::int64_t> i64;  // ... or i64 holds the values
 };
 
-// One vertex cell per point, or the given triangles (3 point indices each) when not empty.
+struct VtuCells {  // point indices of each cell, the end of each cell in them, the VTK cell types
+  std::vector<std::int64_t> connectivity, offsets;
+  std::vector<std::uint8_t> types;
+  void add(const std::int64_t* points, int count, std::uint8_t type);
+  static VtuCells vertices(std::size_t n);                             // VTK_VERTEX per point
+  static VtuCells triangles(const std::vector<std::int32_t>& corners);  // VTK_TRIANGLE, 3 corners each
+};
+inline constexpr std::uint8_t kVtkTetra = 10, kVtkHexahedron = 12;
+
 void write_vtu(const std::string& path, const std::vector<double>& points, const std::vector<VtuArray>& point_data,
-               const std::vector<std::int32_t>& triangles = {});
+               const VtuCells& cells, const std::vector<VtuArray>& cell_data = {}, bool compress = true);
 
 struct PvdEntry {
   double time;

@@ -14,11 +14,14 @@ mpirun -np "$ranks" "$build/bin/rksolve" "$case_dir"
 echo "== rkpost"
 "$build/bin/rkpost" "$case_dir"
 /usr/bin/python3 "$root/scripts/plot_taylor.py" "$case_dir"
-"$build/bin/rkpost" "$case_dir" --quiet  # again, so that report.md links the plots
+echo "== pictures (ParaView, off-screen)"
+xvfb-run -a pvbatch "$root/scripts/pictures.py" "$case_dir" --frames 0,-1
+"$build/bin/rkpost" "$case_dir" --quiet  # again, so that report.md shows the plots and key results
 echo
 /usr/bin/python3 "$root/scripts/taylor_metrics.py" "$case_dir"
 echo
 echo "Results:  $case_dir/vtk/case.pvd   (open in ParaView: paraview $case_dir/vtk/case.pvd)"
-echo "Pictures: $case_dir/plots/taylor_radius_length.png  $case_dir/plots/energies.png"
+echo "Pictures: $case_dir/plots/part_ep_*.png (plastic strain)  $case_dir/plots/part_rank_*.png (ranks)"
+echo "          $case_dir/plots/taylor_radius_length.png  $case_dir/plots/energies.png"
 echo "Report:   $case_dir/report.md"
 echo "Data:     $case_dir/history.csv  $case_dir/solve.json  $case_dir/prep.json"

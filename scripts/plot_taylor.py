@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Plots of a Taylor bar case: impact-face radius and length against time (like the seed's Fig. 7,
-with the seed's final values marked) and the energy balance. Writes CASE/plots/*.png."""
+with the seed's final values marked) and the energy balance. Writes CASE/plots/*.png and
+CASE/plots/results.json (the key results against the seed's, shown by rkpost in report.md)."""
 import csv
+import json
 import sys
 from pathlib import Path
 
@@ -49,6 +51,15 @@ def main(case: Path) -> None:
     ax.grid(True)
     fig.tight_layout()
     fig.savefig(out / "energies.png", dpi=110)
+
+    # key results against the published ones, for CASE/report.md (rkpost reads plots/results.json)
+    last = series[-1]
+    results = [{"quantity": label, "value": round(last[key], 3), "unit": "mm", "reference": PUBLISHED[key]["seed_rkpm"],
+                "source": f"seed RKPM at 80 us (accept band {PUBLISHED[key]['band'][0]}-{PUBLISHED[key]['band'][1]} mm)"}
+               for key, label in (("footprint_radius_mm", "footprint radius"), ("final_length_mm", "final length"))]
+    results.append({"quantity": "peak eq. plastic strain", "value": round(last["max_eq_plastic_strain"], 3), "unit": "-",
+                    "reference": None, "source": "other codes 2.5-3.2"})
+    (out / "results.json").write_text(json.dumps(results, indent=2) + "\n")
 
 
 if __name__ == "__main__":

@@ -14,7 +14,8 @@
 namespace rk {
 namespace {
 
-constexpr int kProjected = 4;  // weight, eq_plastic_strain, von_mises, pressure
+// weight, eq_plastic_strain, von_mises, pressure, Cauchy stress (xx, yy, zz, xy, yz, zx)
+constexpr int kProjected = 10;
 
 // Cauchy von Mises stress and pressure of a point from its Kirchhoff stress (sigma = tau / J).
 void cauchy_measures(const double* tau, double J, double& von_mises, double& pressure) {
@@ -53,11 +54,13 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
   // Particle values of point quantities: q_I = sum_g w_g N_I(X_g) q_g / sum_g w_g N_I(X_g), summed
   // over ranks in fixed point so every copy and every rank count gives the same value.
   std::vector<double> q(kProjected * md.m);
-  double bound[kProjected] = {0, 0, 0, 0};
+  double bound[kProjected] = {};
   for (std::size_t g = 0; g < md.m; ++g) {
     double vm, p;
     cauchy_measures(&st.tau[6 * g], st.J[g], vm, p);
-    const double values[kProjected] = {1.0, st.ep[g], vm, p};
+    const double* tau = &st.tau[6 * g];
+    const double J = st.J[g];
+    const double values[kProjected] = {1.0, st.ep[g], vm, p, tau[0] / J, tau[1] / J, tau[2] / J, tau[3] / J, tau[4] / J, tau[5] / J};
     double nmax = 0;
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) nmax = std::max(nmax, std::abs(md.N[k]));
     for (int c = 0; c < kProjected; ++c) {
@@ -80,7 +83,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
   std::vector<std::int32_t> row(md.n, -1);
   for (std::size_t q = 0; q < md.ebc_particles.size(); ++q) row[md.ebc_particles[q]] = std::int32_t(q);
   std::vector<std::int64_t> gid;
-  std::vector<double> x, u, v, ep, vm, pr;
+  std::vector<double> x, u, v, ep, vm, pr, sigma;
   for (std::size_t I = 0; I < md.n; ++I) {
     if (!md.owned[I]) continue;
     gid.push_back(md.global_id[I]);
@@ -100,6 +103,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     ep.push_back(value(1));
     vm.push_back(value(2));
     pr.push_back(value(3));
+    for (int c = 4; c < kProjected; ++c) sigma.push_back(value(c));
   }
   const std::string path = frame_path(dir_, frames_), tmp = path + ".tmp";
   try {
@@ -118,6 +122,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     f.write(g + "eq_plastic_strain", ep);
     f.write(g + "von_mises", vm);
     f.write(g + "pressure", pr);
+    f.write(g + "stress", sigma, 6);
     f.close();
   } catch (const Error&) {  // no partial frame is left behind
     std::error_code ignored;

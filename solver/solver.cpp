@@ -146,6 +146,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   const double setup_s = comm.wtime() - wall0;
   double last_progress = comm.wtime();
   const bool terminal = ::isatty(::fileno(stdout)) != 0;
+  bool progress_shown = false;  // an updating line is on the terminal: end it before other output
   std::int64_t progress_step = st.step;
   const double progress_t0 = st.t;
   if (!opt.quiet && comm.rank() == 0)
@@ -340,14 +341,16 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     ++st.step;
     timer.stop(kUpdate);
     if (!opt.quiet && comm.rank() == 0 && comm.wtime() - last_progress > (terminal ? 2.0 : 10.0)) {
-      // plain periodic lines (under mpirun a rank cannot tell a terminal from a pipe reliably)
       const double now = comm.wtime(), rate = double(st.step - progress_step) / (now - last_progress);
       const double eta = (now - wall0 - setup_s) * (t_end - st.t) / std::max(st.t - progress_t0, 1e-300);
       last_progress = now;
       progress_step = st.step;
-      std::printf("rksolve: t = %.4g s (%5.1f %%)  step %lld  %.0f steps/s  dt = %.3g s  energy error %.2e  ETA %.0f s\n",
-                  st.t, 100 * st.t / t_end, static_cast<long long>(st.step), rate, dt, last_error, eta);
+      // a terminal gets one updating line; a pipe or a log gets a plain line every 10 s
+      std::printf("%srksolve: t = %.4g s (%5.1f %%)  step %lld  %.0f steps/s  dt = %.3g s  energy error %.2e  ETA %.0f s%s",
+                  terminal ? "\r" : "", st.t, 100 * st.t / t_end, static_cast<long long>(st.step), rate, dt, last_error,
+                  eta, terminal ? "   " : "\n");
       std::fflush(stdout);
+      progress_shown = terminal;
     }
   }
 
@@ -385,6 +388,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                         {"peak_memory_mb_max_rank", mem[0]},
                         {"phases", phases}};
     std::ofstream(opt.case_dir + "/solve.json") << j.dump(2) << "\n";
+    if (!opt.quiet && progress_shown) std::printf("\n");
     if (!opt.quiet)
       std::printf("rksolve: done, %lld steps, %.2f s wall (%.0f ns per point update), energy error %.2e\n",
                   static_cast<long long>(st.step), wall, j["ns_per_point_update"].get<double>(), last_error);

@@ -1,0 +1,26 @@
+"""Run by pvpython (ParaView's Python, a real ParaView client): reads CASE/vtk/case.pvd and every
+dataset it lists with ParaView's readers, and prints them as JSON for rkpost_paraview.py to compare."""
+import json
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+from paraview import servermanager as sm
+from paraview.simple import PVDReader, XMLUnstructuredGridReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+vtk_dir = Path(sys.argv[1]) / "vtk"
+series = PVDReader(FileName=str(vtk_dir / "case.pvd"))
+series.UpdatePipelineInformation()
+out = {"times": list(series.TimestepValues), "datasets": []}
+for d in ET.parse(vtk_dir / "case.pvd").getroot().iter("DataSet"):
+    grid = sm.Fetch(XMLUnstructuredGridReader(FileName=[str(vtk_dir / d.get("file"))]))
+    pd, cd = grid.GetPointData(), grid.GetCellData()
+    entry = {"file": d.get("file"), "part": int(d.get("part")), "time": float(d.get("timestep")),
+             "points": vtk_to_numpy(grid.GetPoints().GetData()).tolist(),
+             "cells": grid.GetNumberOfCells(),
+             "cell_types": sorted({grid.GetCellType(c) for c in range(grid.GetNumberOfCells())}),
+             "point_data": {pd.GetArrayName(k): vtk_to_numpy(pd.GetArray(k)).tolist() for k in range(pd.GetNumberOfArrays())},
+             "cell_data": {cd.GetArrayName(k): vtk_to_numpy(cd.GetArray(k)).tolist() for k in range(cd.GetNumberOfArrays())}}
+    out["datasets"].append(entry)
+print(json.dumps(out))
