@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -145,7 +146,10 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   double last_checkpoint_wall = comm.wtime();
   const double setup_s = comm.wtime() - wall0;
   double last_progress = comm.wtime();
-  const bool terminal = ::isatty(::fileno(stdout)) != 0;
+  // Under mpirun a rank's stdout is a pseudo-terminal even when mpirun's output goes to a file, so
+  // the updating line is kept for runs started without a launcher; launched runs print plain lines.
+  const bool launched = std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMI_RANK") || std::getenv("PMIX_RANK");
+  const bool terminal = !launched && ::isatty(::fileno(stdout)) != 0;
   bool progress_shown = false;  // an updating line is on the terminal: end it before other output
   std::int64_t progress_step = st.step;
   const double progress_t0 = st.t;
