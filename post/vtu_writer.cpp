@@ -39,7 +39,7 @@ class Appended {
       uLongf out = compressBound(uLong(n));
       const std::size_t start = bytes_.size();
       bytes_.resize(start + out);
-      if (compress2(bytes_.data() + start, &out, raw + b * kBlock, uLong(n), 1) != Z_OK)
+      if (compress2(bytes_.data() + start, &out, raw + b * kBlock, uLong(n), 6) != Z_OK)
         throw Error("zlib failed to compress the VTK array " + name);
       bytes_.resize(start + out);
       header.push_back(out);
