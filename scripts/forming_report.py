@@ -12,7 +12,6 @@ merged frames from rkpost: workpiece = part 0, dies = parts 1, 2, ...). Writes
                                 seed's Figs. 11 and 16): particles coloured by plastic strain, dies grey
 and prints (or --json) the stroke reached, peak force, energy error and volume change.
 """
-import csv
 import json
 import sys
 import xml.etree.ElementTree as ET
@@ -26,13 +25,12 @@ import meshio  # noqa: E402
 import numpy as np  # noqa: E402
 import yaml  # noqa: E402
 
-
-def moving_dies(header):
-    return [c[: -len(".stroke")] for c in header if c.endswith(".stroke")]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from history_plots import moving_dies, plot_die_forces, plot_energies, read_history  # noqa: E402
 
 
 def summary(case: Path) -> dict:
-    rows = list(csv.DictReader(open(case / "history.csv")))
+    rows = read_history(case)
     late = rows[len(rows) // 10:]  # after the start-up, where the energies are still tiny
     out = {"time_s": float(rows[-1]["time"]), "steps_rows": len(rows),
            "max_energy_error": max(float(r["energy_error"]) for r in late),
@@ -103,37 +101,12 @@ def section(points, triangles, point, normal):
     return segs
 
 
-def finish(fig, ax, xlabel, ylabel, path):
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel(ylabel)
-    ax.grid(alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-
-
 def plots(case: Path, stages: int) -> None:
     out = case / "plots"
     out.mkdir(exist_ok=True)
-    rows = list(csv.DictReader(open(case / "history.csv")))
-    fig, ax = plt.subplots(figsize=(6, 4))
-    for d in moving_dies(rows[0].keys()):
-        stroke = [1e3 * float(r[d + ".stroke"]) for r in rows]
-        if max(stroke) > 0:  # raw (it rings with the stress waves) and a running mean over 2 % of the stroke
-            force = np.array([1e-3 * float(r[d + ".force"]) for r in rows])
-            k = max(1, len(rows) // 50)
-            mean = np.convolve(force, np.ones(k) / k, mode="same")
-            line, = ax.plot(stroke, force, alpha=0.3, lw=0.8)
-            ax.plot(stroke[k // 2: len(stroke) - k // 2], mean[k // 2: len(stroke) - k // 2], color=line.get_color(),
-                    label=f"{d} (running mean)")
-    finish(fig, ax, "stroke (mm)", "press force, full part (kN)", out / "force_stroke.png")
-
-    fig, ax = plt.subplots(figsize=(6, 4))
-    t = [1e3 * float(r["time"]) for r in rows]
-    for key in ("kinetic", "internal", "plastic_work", "contact_work", "friction_work"):
-        ax.plot(t, [float(r[key]) for r in rows], label=key)
-    finish(fig, ax, "time (ms)", "energy (J), modeled part", out / "energies.png")
+    rows = read_history(case)
+    plot_die_forces(rows, out / "force_stroke.png")
+    plot_energies(rows, out / "energies.png")
 
     all_frames = frames(case)
     picks = sorted({round(k * (len(all_frames) - 1) / max(stages - 1, 1)) for k in range(stages)})

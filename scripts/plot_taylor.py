@@ -13,6 +13,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from history_plots import plot_energies, read_history  # noqa: E402
 from taylor_metrics import PUBLISHED, frames_of, metrics  # noqa: E402
 
 
@@ -37,20 +38,7 @@ def main(case: Path) -> None:
     fig.tight_layout()
     fig.savefig(out / "taylor_radius_length.png", dpi=110)
 
-    rows = list(csv.DictReader(open(case / "history.csv")))
-    th = [1e6 * float(r["time"]) for r in rows]
-    fig, ax = plt.subplots(figsize=(6, 4))
-    for key in ("kinetic", "internal", "plastic_work", "contact_work"):
-        ax.plot(th, [float(r[key]) for r in rows], label=key)
-    ax.set_xlabel("time (us)")
-    ax.set_ylabel("energy of the modeled part (J)")
-    ax2 = ax.twinx()
-    ax2.plot(th, [100 * float(r["energy_error"]) for r in rows], "k:", label="energy error (%)")
-    ax2.set_ylabel("energy error (%)")
-    ax.legend(loc="center right", fontsize=8)
-    ax.grid(True)
-    fig.tight_layout()
-    fig.savefig(out / "energies.png", dpi=110)
+    plot_energies(read_history(case), out / "energies.png")
 
     # key results against the published ones, for CASE/report.md (rkpost reads plots/results.json)
     last = series[-1]
