@@ -89,7 +89,7 @@ def tradeoffs():
     else:
         knobs += [(f"dilation {a}", [f"discretization.dilation={a}"], []) for a in (1.5, 2.5, 3.0)]
         knobs += [("kernel quartic", ["discretization.kernel=quartic_spline"], []),
-                  ("basis quadratic", ["discretization.basis=quadratic", "discretization.dilation=2.5"], []),
+                  ("basis quadratic", ["discretization.basis=quadratic", "discretization.dilation=3.0"], []),
                   ("gauss 1", ["discretization.gauss_order=1"], []), ("gauss 3", ["discretization.gauss_order=3"], []),
                   ("no F-bar", ["discretization.volumetric=none"], []),
                   ("ebc transformation", ["discretization.ebc_method=transformation"], [])]
@@ -170,10 +170,17 @@ def run(args, cwd=None, check=True, timeout=None):
 def plan(study):
     lines = []
     targets = []
+    preps = set()
     for c in STUDIES[study]():
         target = f"$(WORK)/{study}/{c.name}/case.json"
         targets.append(target)
-        lines.append(f"{target}: $(WORK)/prep/{c.prep_key}/prep.json")
+        # a case is redone when its prep or the solver changed; a prep when rkprep or the scene's
+        # folder (scene, CAD) changed, so no case runs on files of an older scene layout
+        lines.append(f"{target}: $(WORK)/prep/{c.prep_key}/prep.json $(BIN)/rksolve $(BIN)/rkpost")
+        if c.prep_key not in preps:
+            preps.add(c.prep_key)
+            inputs = " ".join(sorted(str(f) for f in (ROOT / "geometry" / c.scene).parent.iterdir() if f.is_file()))
+            lines.append(f"$(WORK)/prep/{c.prep_key}/prep.json: $(BIN)/rkprep {inputs}")
     WORK.mkdir(parents=True, exist_ok=True)
     (WORK / f"{study}.mk").write_text(f"{study}_CASES := {' '.join(targets)}\n" + "\n".join(lines) + "\n")
 

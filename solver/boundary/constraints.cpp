@@ -115,7 +115,6 @@ void build_constraints(Model& md, const Subdomain& sub, const Scene& scene) {
     if (!md.surface[I])
       throw Error(where(md, I) + " lies on " + names.front() +
                   " but inside the part: a fixed face, prescribed face or symmetry plane must be a face of the part");
-    // the row N_J(X_I): rkprep made the whole support of an owned surface particle local
     for (std::size_t f = 0; f < scene.fixed_faces.size(); ++f)
       md.face_particles[f] += on_plane(md, I, scene.fixed_faces[f].point, scene.fixed_faces[f].normal);
     for (std::size_t p = 0; p < scene.prescribed_faces.size(); ++p)
@@ -124,9 +123,17 @@ void build_constraints(Model& md, const Subdomain& sub, const Scene& scene) {
     for (std::size_t s = 0; s < scene.symmetry_planes.size(); ++s)
       md.face_particles[reported_faces(scene) + s] +=
           on_plane(md, I, scene.symmetry_planes[s].point, scene.symmetry_planes[s].normal);
-    if (!shapes.append(&md.X[3 * I], md.ebc_cols, md.ebc_N, dN).regular)
-      throw Error("the RK moment matrix is singular at the constrained " + where(md, I) +
-                  "; increase discretization.dilation");
+    // the row N_J(X_I): rkprep made the whole support of an owned surface particle local. The nodal
+    // method needs it only to measure its error (and to show u^h), so it does without where the
+    // moment matrix is singular (a quadratic basis at a corner); the exact one cannot.
+    const std::size_t k0 = md.ebc_cols.size();
+    if (!shapes.append(&md.X[3 * I], md.ebc_cols, md.ebc_N, dN).regular) {
+      if (scene.discretization.ebc_method == "transformation")
+        throw Error("the RK moment matrix is singular at the constrained " + where(md, I) +
+                    "; increase discretization.dilation or use discretization.ebc_method: nodal");
+      md.ebc_cols.resize(k0), md.ebc_N.resize(k0);
+      continue;
+    }
     md.ebc_particles.push_back(std::int32_t(I));
     md.ebc_offsets.push_back(std::int32_t(md.ebc_cols.size()));
   }
