@@ -15,7 +15,7 @@ echo "== rkpost"
 "$build/bin/rkpost" "$case_dir"
 /usr/bin/python3 "$root/scripts/plot_taylor.py" "$case_dir"
 echo "== pictures (ParaView, off-screen)"
-xvfb-run -a pvbatch "$root/scripts/pictures.py" "$case_dir" --frames 0,-1
+"$root/scripts/pvbatch_offscreen.sh" "$root/scripts/pictures.py" "$case_dir" --frames 0,-1
 "$build/bin/rkpost" "$case_dir" --quiet  # again, so that report.md shows the plots and key results
 echo
 /usr/bin/python3 "$root/scripts/taylor_metrics.py" "$case_dir"

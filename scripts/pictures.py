@@ -2,7 +2,8 @@
 the deformed part coloured by equivalent plastic strain, with the dies, at chosen frames, and the
 integration cells coloured by the rank that computes them (the seed's Figs. 8c, 13, 18).
 
-  xvfb-run -a pvbatch scripts/pictures.py CASE [--frames 0,-1] [--size 900x700]
+  scripts/pvbatch_offscreen.sh scripts/pictures.py CASE [--frames 0,-1] [--size 900x700]
+  (or xvfb-run -a pvbatch ...; plain pvbatch where a display exists)
 
 Writes CASE/plots/part_ep_FFFFF.png and CASE/plots/part_rank_FFFFF.png."""
 import argparse

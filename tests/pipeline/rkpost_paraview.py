@@ -90,8 +90,8 @@ for args, expected in ((["--fields", "strain"], "--fields: 'strain' is not a fie
 
 # pictures, off-screen
 tools.post(case)
-p = tools.run(["xvfb-run", "-a", "pvbatch", rkcase.ROOT / "scripts" / "pictures.py", case, "--frames", "0,-1",
-               "--size", "640x480"])
+p = tools.run([rkcase.ROOT / "scripts" / "pvbatch_offscreen.sh", rkcase.ROOT / "scripts" / "pictures.py", case,
+               "--frames", "0,-1", "--size", "640x480"])
 for name in ("part_ep_00000", "part_ep_00002", "part_rank_00002"):
     png = case / "plots" / f"{name}.png"
     img = mpimg.imread(png)
