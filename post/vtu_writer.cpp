@@ -77,15 +77,6 @@ void VtuCells::add(const std::int64_t* points, int count, std::uint8_t type) {
   types.push_back(type);
 }
 
-VtuCells VtuCells::vertices(std::size_t n) {
-  VtuCells c;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::int64_t p = std::int64_t(i);
-    c.add(&p, 1, 1);
-  }
-  return c;
-}
-
 VtuCells VtuCells::triangles(const std::vector<std::int32_t>& corners) {
   VtuCells c;
   for (std::size_t t = 0; t + 2 < corners.size(); t += 3) {

@@ -21,7 +21,6 @@ struct VtuCells {  // point indices of each cell, the end of each cell in them, 
   std::vector<std::int64_t> connectivity, offsets;
   std::vector<std::uint8_t> types;
   void add(const std::int64_t* points, int count, std::uint8_t type);
-  static VtuCells vertices(std::size_t n);                             // VTK_VERTEX per point
   static VtuCells triangles(const std::vector<std::int32_t>& corners);  // VTK_TRIANGLE, 3 corners each
 };
 inline constexpr std::uint8_t kVtkTetra = 10, kVtkHexahedron = 12;

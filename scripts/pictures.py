@@ -36,10 +36,7 @@ def render(part_file, die_files, out, colour, title, size, legend=True):
     shown.Ambient, shown.Diffuse = 0.3, 0.8  # the faces turned from the headlight stay readable
     ColorBy(shown, colour)
     lut = GetColorTransferFunction(colour[1])
-    if colour[1] == "rank":
-        lut.ApplyPreset("Rainbow Uniform", True)
-    else:
-        lut.ApplyPreset("Turbo" if hasattr(lut, "ApplyPreset") else "Jet", True)
+    lut.ApplyPreset("Rainbow Uniform" if colour[1] == "rank" else "Turbo", True)
     shown.RescaleTransferFunctionToDataRange(True, False)
     if legend:
         bar = GetScalarBar(lut, view)

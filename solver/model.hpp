@@ -30,7 +30,7 @@ struct Model {
   // and for measuring the error of the nodal one
   std::vector<std::int32_t> ebc_particles, ebc_offsets, ebc_cols;
   std::vector<double> ebc_N;
-  std::vector<double> face_particles;  // owned particles per face: fixed, prescribed, symmetry
+  std::vector<double> face_particles;  // owned particles per face (all_faces numbering)
 
   // integration points, SoA; neighbours and shape data in CSR (point -> columns)
   std::size_t m = 0;

@@ -11,7 +11,6 @@
 #include <limits>
 #include <sstream>
 
-#include "boundary/constraints.hpp"
 #include "boundary/essential_bc.hpp"
 #include "checkpoint.hpp"
 #include "contact/die_contact.hpp"

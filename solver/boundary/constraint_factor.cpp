@@ -15,7 +15,6 @@ struct ConstraintFactor::Impl {
   Backend backend;
   cholmod_common cc;
   std::int64_t n = 0;
-  cholmod_factor* L = nullptr;                          // cholmod
   SuiteSparseQR_factorization<double>* QR = nullptr;    // spqr
   cholmod_dense* b = nullptr;  // spqr right-hand side
   // cholmod: L (columns sorted, diagonal first) and the fill-reducing order, solved by hand: two
@@ -45,35 +44,33 @@ ConstraintFactor::ConstraintFactor(const ConstraintRows& A, Backend backend) : i
     cholmod_sparse* Am = cholmod_l_transpose(At, 1, &m.cc);
     cholmod_sparse* full = cholmod_l_aat(Am, nullptr, 0, 1, &m.cc);  // S = A A^T
     cholmod_sparse* S = cholmod_l_copy(full, 1, 1, &m.cc);          // symmetric, upper part
-    m.L = cholmod_l_analyze(S, &m.cc);
-    ok = m.L && cholmod_l_factorize(S, m.L, &m.cc) && m.cc.status == CHOLMOD_OK && m.L->minor == std::size_t(m.n);
+    cholmod_factor* L = cholmod_l_analyze(S, &m.cc);
+    ok = L && cholmod_l_factorize(S, L, &m.cc) && m.cc.status == CHOLMOD_OK && L->minor == std::size_t(m.n);
     // a pivot that lost all but 1e-10 of its row's weight: a constraint that repeats others
-    const auto* Lp = static_cast<const SuiteSparse_long*>(ok ? m.L->p : nullptr);
-    const auto* Lx = static_cast<const double*>(ok ? m.L->x : nullptr);
-    const auto* Perm = static_cast<const SuiteSparse_long*>(ok ? m.L->Perm : nullptr);
+    const auto* Lp = static_cast<const SuiteSparse_long*>(ok ? L->p : nullptr);
+    const auto* Lx = static_cast<const double*>(ok ? L->x : nullptr);
+    const auto* Perm = static_cast<const SuiteSparse_long*>(ok ? L->Perm : nullptr);
     for (std::int64_t j = 0; ok && j < m.n; ++j) {
       const std::int64_t a = Perm ? Perm[j] : j;
       double Saa = 0;
       for (auto k = A.offsets[a]; k < A.offsets[a + 1]; ++k) Saa += A.val[k] * A.val[k];
       ok = Lx[Lp[j]] * Lx[Lp[j]] > 1e-10 * Saa;
     }
-    if (ok) {
-      cholmod_factor* Lc = cholmod_l_copy_factor(m.L, &m.cc);
-      cholmod_sparse* Ls = cholmod_l_factor_to_sparse(Lc, &m.cc);
+    if (ok) {  // keep L's columns (sorted, diagonal first) and the order; the CHOLMOD factor goes
+      m.perm.resize(std::size_t(m.n));
+      for (std::int64_t j = 0; j < m.n; ++j) m.perm[j] = Perm ? Perm[j] : j;
+      cholmod_sparse* Ls = cholmod_l_factor_to_sparse(L, &m.cc);
       const auto* p = static_cast<const SuiteSparse_long*>(Ls->p);
       const auto* i = static_cast<const SuiteSparse_long*>(Ls->i);
       const auto* x = static_cast<const double*>(Ls->x);
       m.Lp.assign(p, p + m.n + 1);
       m.Li.assign(i, i + p[m.n]);
       m.Lx.assign(x, x + p[m.n]);
-      const auto* P = static_cast<const SuiteSparse_long*>(m.L->Perm);
-      m.perm.resize(std::size_t(m.n));
-      for (std::int64_t j = 0; j < m.n; ++j) m.perm[j] = P ? P[j] : j;
       m.y.resize(std::size_t(m.n));
       factor_nnz_ = std::int64_t(p[m.n]);
       cholmod_l_free_sparse(&Ls, &m.cc);
-      cholmod_l_free_factor(&Lc, &m.cc);
     }
+    cholmod_l_free_factor(&L, &m.cc);
     cholmod_l_free_sparse(&S, &m.cc);
     cholmod_l_free_sparse(&full, &m.cc);
     cholmod_l_free_sparse(&Am, &m.cc);
@@ -98,7 +95,6 @@ void ConstraintFactor::release() {
   if (!impl_) return;
   Impl& m = *impl_;
   cholmod_l_free_dense(&m.b, &m.cc);
-  cholmod_l_free_factor(&m.L, &m.cc);
   if (m.QR) SuiteSparseQR_free(&m.QR, &m.cc);
   cholmod_l_finish(&m.cc);
   delete impl_;

@@ -33,39 +33,42 @@ bool on_plane(const Model& md, std::size_t I, const Vec3& point, const Vec3& nor
   return std::abs(d) <= 1e-6 * md.spacing[I];
 }
 
-// The candidates of particle I in priority order: fixed faces, prescribed faces, symmetry planes.
-std::vector<Candidate> candidates(const Model& md, std::size_t I, const Scene& scene, std::vector<std::string>& names) {
+// The candidates of particle I in priority order: fixed faces, prescribed faces, symmetry planes;
+// `faces` gets the faces it lies on (all_faces numbering).
+std::vector<Candidate> candidates(const Model& md, std::size_t I, const Scene& scene, std::vector<std::size_t>& faces) {
   std::vector<Candidate> out;
-  names.clear();
-  const int fixed = int(scene.fixed_faces.size());
+  faces.clear();
+  const int fixed = int(scene.fixed_faces.size()), reported = int(reported_faces(scene));
   for (int f = 0; f < fixed; ++f)
     if (on_plane(md, I, scene.fixed_faces[f].point, scene.fixed_faces[f].normal)) {
       for (int d = 0; d < 3; ++d) out.push_back({Eigen::Vector3d::Unit(d), 0.0, -1, f});
-      names.push_back("fixed face '" + scene.fixed_faces[f].name + "'");
+      faces.push_back(std::size_t(f));
     }
   for (int p = 0; p < int(scene.prescribed_faces.size()); ++p) {
     const EssentialFace& face = scene.prescribed_faces[p];
     if (on_plane(md, I, face.point, face.normal)) {
       const Vec3& d = face.motion.direction;
       out.push_back({Eigen::Vector3d(d[0], d[1], d[2]), 1.0, p, fixed + p});
-      names.push_back("prescribed face '" + face.name + "'");
+      faces.push_back(std::size_t(fixed + p));
     }
   }
-  for (const auto& pl : scene.symmetry_planes)
+  for (int s = 0; s < int(scene.symmetry_planes.size()); ++s) {
+    const SymmetryPlane& pl = scene.symmetry_planes[s];
     if (on_plane(md, I, pl.point, pl.normal)) {
       out.push_back({Eigen::Vector3d(pl.normal[0], pl.normal[1], pl.normal[2]), 0.0, -1, -1});
-      names.push_back("a symmetry plane");
+      faces.push_back(std::size_t(reported + s));
     }
+  }
   return out;
 }
 
 // Gram-Schmidt on directions and values together: e_k . u = g_k stays the same set of conditions.
-std::vector<Candidate> orthonormalize(const Model& md, std::size_t I, std::vector<Candidate> in,
-                                      const std::vector<std::string>& names) {
+std::vector<Candidate> orthonormalize(const Model& md, std::size_t I, std::vector<Candidate> in, const Scene& scene,
+                                      const std::vector<std::size_t>& faces) {
   std::vector<Candidate> out;
   auto conflict = [&] {
     std::string list;
-    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    for (auto f : faces) list += (list.empty() ? "" : ", ") + face_label(scene, f);
     return Error(where(md, I) + " lies on " + list +
                  " that prescribe different motions along one direction; separate the faces");
   };
@@ -92,18 +95,25 @@ std::vector<Candidate> orthonormalize(const Model& md, std::size_t I, std::vecto
 
 }  // namespace
 
+std::string face_label(const Scene& scene, std::size_t f) {
+  const std::size_t fixed = scene.fixed_faces.size(), reported = reported_faces(scene);
+  if (f < fixed) return "boundaries.fixed_faces '" + scene.fixed_faces[f].name + "'";
+  if (f < reported) return "boundaries.prescribed_faces '" + scene.prescribed_faces[f - fixed].name + "'";
+  return "boundaries.symmetry_planes entry " + std::to_string(f - reported);
+}
+
 void build_constraints(Model& md, const Subdomain& sub, const Scene& scene) {
   md.constraint_offsets.assign(1, 0);
   md.constraint_dirs.clear(), md.constraint_coef.clear(), md.constraint_value_face.clear(), md.constraint_face.clear();
   md.ebc_particles.clear(), md.ebc_cols.clear(), md.ebc_N.clear();
   md.ebc_offsets.assign(1, 0);
-  md.face_particles.assign(reported_faces(scene) + scene.symmetry_planes.size(), 0);
+  md.face_particles.assign(all_faces(scene), 0);
 
   const LocalShapes shapes(md.X, sub.volume, md.spacing, scene);
-  std::vector<std::string> names;
+  std::vector<std::size_t> faces;
   std::vector<double> dN;
   for (std::size_t I = 0; I < md.n; ++I) {
-    const std::vector<Candidate> dirs = orthonormalize(md, I, candidates(md, I, scene, names), names);
+    const std::vector<Candidate> dirs = orthonormalize(md, I, candidates(md, I, scene, faces), scene, faces);
     for (const auto& c : dirs) {
       md.constraint_dirs.insert(md.constraint_dirs.end(), c.e.data(), c.e.data() + 3);
       md.constraint_coef.push_back(c.coef);
@@ -113,16 +123,9 @@ void build_constraints(Model& md, const Subdomain& sub, const Scene& scene) {
     md.constraint_offsets.push_back(std::int32_t(md.constraint_coef.size()));
     if (dirs.empty() || !md.owned[I]) continue;
     if (!md.surface[I])
-      throw Error(where(md, I) + " lies on " + names.front() +
+      throw Error(where(md, I) + " lies on " + face_label(scene, faces.front()) +
                   " but inside the part: a fixed face, prescribed face or symmetry plane must be a face of the part");
-    for (std::size_t f = 0; f < scene.fixed_faces.size(); ++f)
-      md.face_particles[f] += on_plane(md, I, scene.fixed_faces[f].point, scene.fixed_faces[f].normal);
-    for (std::size_t p = 0; p < scene.prescribed_faces.size(); ++p)
-      md.face_particles[scene.fixed_faces.size() + p] +=
-          on_plane(md, I, scene.prescribed_faces[p].point, scene.prescribed_faces[p].normal);
-    for (std::size_t s = 0; s < scene.symmetry_planes.size(); ++s)
-      md.face_particles[reported_faces(scene) + s] +=
-          on_plane(md, I, scene.symmetry_planes[s].point, scene.symmetry_planes[s].normal);
+    for (auto f : faces) ++md.face_particles[f];
     // the row N_J(X_I): rkprep made the whole support of an owned surface particle local. The nodal
     // method needs it only to measure its error (and to show u^h), so it does without where the
     // moment matrix is singular (a quadratic basis at a corner); the exact one cannot.

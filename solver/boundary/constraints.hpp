@@ -19,4 +19,10 @@ void build_constraints(Model& md, const Subdomain& sub, const Scene& scene);
 // Faces in reporting order: the fixed faces, then the prescribed ones.
 inline std::size_t reported_faces(const Scene& scene) { return scene.fixed_faces.size() + scene.prescribed_faces.size(); }
 
+// Every face in one numbering (md.face_particles): the reported faces, then the symmetry planes.
+inline std::size_t all_faces(const Scene& scene) { return reported_faces(scene) + scene.symmetry_planes.size(); }
+
+// The scene key of face f of that numbering, for messages: "boundaries.fixed_faces 'clamp'".
+std::string face_label(const Scene& scene, std::size_t f);
+
 }  // namespace rk

@@ -70,13 +70,9 @@ EssentialBcs::EssentialBcs(const Model& md, const Scene& scene, const Comm& comm
     if (md.owned[I]) held.back() += md.constraint_offsets[I + 1] - md.constraint_offsets[I];
   comm.sum(held.data(), int(held.size()));
   rows_ = std::int64_t(held.back());
-  std::vector<std::string> names;
-  for (const auto& f : scene.fixed_faces) names.push_back("boundaries.fixed_faces '" + f.name + "'");
-  for (const auto& f : scene.prescribed_faces) names.push_back("boundaries.prescribed_faces '" + f.name + "'");
-  for (std::size_t s = 0; s < scene.symmetry_planes.size(); ++s)
-    names.push_back("boundaries.symmetry_planes entry " + std::to_string(s));
-  for (std::size_t f = 0; f < names.size(); ++f)
-    comm.check(held[f] > 0, names[f] + ": no particle of the part lies on this plane; check its point and normal");
+  for (std::size_t f = 0; f < all_faces(scene); ++f)
+    comm.check(held[f] > 0,
+               face_label(scene, f) + ": no particle of the part lies on this plane; check its point and normal");
   if (scene.discretization.ebc_method != "transformation" || rows_ == 0) return;
 
   // The whole constraint system on every rank, in global-id order: the same on any rank count.
