@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "error.hpp"
+#include "local_particles.hpp"
 #include "neighbour_grid.hpp"
 
 namespace rk {
@@ -55,34 +56,19 @@ std::vector<Subdomain> build_subdomains(const SubdomainRequest& r) {
   for (std::size_t g = 0; g < r.disc.point_weight.size(); ++g)
     points_of[r.cell_rank[r.disc.point_cell[g]]].push_back(std::int32_t(g));
 
-  // Local particles of each rank: the cells' nodes and every particle whose support covers a point.
+  // Local particles of each rank: the cells' nodes, the supports of its points and of its owned
+  // particles.
   std::vector<std::vector<std::int32_t>> local(r.ranks);
-  std::vector<std::int32_t> stamp(n, -1), found;
   for (int q = 0; q < r.ranks; ++q) {
-    auto mark = [&](std::int32_t I) {
-      if (stamp[I] != q) stamp[I] = q, local[q].push_back(I);
-    };
+    LocalParticleRequest request{grid, r.mesh.X.data(), {}, {}, {}};
     for (auto c : cells_of[q])
-      for (auto k = r.mesh.cell_offsets[c]; k < r.mesh.cell_offsets[c + 1]; ++k) mark(r.mesh.cell_nodes[k]);
-    for (auto g : points_of[q]) {
-      found.clear();
-      grid.covering(&r.disc.point_X[3 * g], found);
-      for (auto I : found) mark(I);
-    }
-    // Essential BCs: the owner of a surface particle evaluates every shape function at it (the
-    // transformation's row, u^h(X_I) in the output), so the particle's whole support is local too.
+      request.cell_nodes.insert(request.cell_nodes.end(), &r.mesh.cell_nodes[r.mesh.cell_offsets[c]],
+                                &r.mesh.cell_nodes[r.mesh.cell_offsets[c + 1]]);
+    for (auto g : points_of[q]) request.points.insert(request.points.end(), &r.disc.point_X[3 * g], &r.disc.point_X[3 * g] + 3);
     for (std::size_t I = 0; I < n; ++I)
-      if (owner[I] == q && r.mesh.surface[I]) {
-        found.clear();
-        grid.covering(&r.mesh.X[3 * I], found);
-        for (auto J : found) mark(J);
-      }
-    std::sort(local[q].begin(), local[q].end());
+      if (owner[I] == q) request.owned.push_back(std::int32_t(I));
+    local[q] = local_particles(request);
   }
-  // Which ranks hold each particle (ascending rank).
-  std::vector<std::vector<std::int32_t>> holders(n);
-  for (int q = 0; q < r.ranks; ++q)
-    for (auto I : local[q]) holders[I].push_back(q);
 
   std::vector<Subdomain> subs(r.ranks);
   std::vector<std::int32_t> local_index(n, -1);
@@ -116,16 +102,7 @@ std::vector<Subdomain> build_subdomains(const SubdomainRequest& r) {
       s.point_weight.push_back(r.disc.point_weight[g]);
       s.point_cell.push_back(cell_local[r.disc.point_cell[g]]);
     }
-    // Overlap maps, built in ascending global id so both ranks of a pair list the same particles.
-    std::vector<std::vector<std::int32_t>> maps(r.ranks);
-    for (auto I : local[q])
-      for (auto p : holders[I])
-        if (p != q) maps[p].push_back(local_index[I]);
-    for (int p = 0; p < r.ranks; ++p)
-      if (!maps[p].empty()) {
-        s.neighbour_ranks.push_back(p);
-        s.overlap.push_back(std::move(maps[p]));
-      }
+    overlap_maps(local, q, s.neighbour_ranks, s.overlap);
   }
   return subs;
 }

@@ -414,6 +414,14 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     c.done();
   }
   {
+    Section r = top.section("reference_updates");
+    s.reference_updates.strain = r.number("strain", s.reference_updates.strain, {0, 10});
+    if (s.reference_updates.strain > 0 && s.discretization.ebc_method == "transformation")
+      throw Error(name + ": key 'reference_updates.strain' cannot be combined with 'discretization.ebc_method' = "
+                  "transformation (its constraint rows are not rebuilt at an update); use nodal");
+    r.done();
+  }
+  {
     Section t = top.section("time", true);
     s.time.end = t.number("end", std::nullopt, {0, 1e6, true, false});
     s.time.cfl = t.number("cfl", s.time.cfl, {0, 2, true, false});

@@ -102,6 +102,13 @@ struct Scene {
     double penalty_scale = 0.25;  // k_I = scale * m_I / dt^2 (< 1: contact never limits the step)
   } contact;
 
+  // Reference-configuration updates (solver/reference_update.hpp): when the Green strain of any
+  // integration point since the last update exceeds `strain` (norm of E), the shape functions are
+  // rebuilt on the current configuration. 0: total Lagrangian throughout.
+  struct ReferenceUpdates {
+    double strain = 0;
+  } reference_updates;
+
   struct Time {
     double end = 0;                // s
     double cfl = 0.5;              // fraction of the stable step

@@ -30,11 +30,18 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     std::vector<double> die_work;
     for (const auto& d : dies) die_work.insert(die_work.end(), {d.press_work, d.friction_work, d.contact_work});
     f.write("dies/work", die_work, 3);
+    f.set_attr("reference_updates", st.reference_updates);
+    f.write("particles/global_id", md.global_id);
     f.write("particles/u", st.u, 3);
     f.write("particles/v", st.v, 3);
     f.write("points/cp_inv", st.cp_inv, 6);
     f.write("points/ep", st.ep);
     f.write("points/wp", st.wp);
+    if (st.reference_updates > 0) {  // the reference configuration (reference_update.hpp)
+      f.write("particles/u_ref", st.u_ref, 3);
+      f.write("points/X", md.point_X, 3);
+      f.write("points/J_ref", st.J_ref);
+    }
     f.close();
   }
   // The new checkpoint must read back, every dataset equal to what was written, before it replaces
@@ -67,10 +74,11 @@ void write_checkpoint(const std::string& case_dir, const Model& md, const State&
   commit_file(tmp, path);  // fsync, rename over the last good one, fsync the folder
 }
 
-void read_checkpoint(const std::string& case_dir, const Model& md, State& st, RunClock& c, std::vector<DieTotals>& dies) {
+void read_checkpoint(const std::string& case_dir, Model& md, State& st, RunClock& c, std::vector<DieTotals>& dies) {
   const std::string path = checkpoint_path(case_dir, md.rank);
   H5File f(path, H5File::Mode::read);
-  if (f.attr_int("particles") != std::int64_t(md.n) || f.attr_int("points") != std::int64_t(md.m))
+  const std::int64_t updates = f.exists("particles/global_id") ? f.attr_int("reference_updates") : 0;
+  if ((updates == 0 && f.attr_int("particles") != std::int64_t(md.n)) || f.attr_int("points") != std::int64_t(md.m))
     throw Error(path + ": the checkpoint does not match this case's subdomain (re-run from the start)");
   const auto s = f.read<double>("clock/scalars");
   const auto i = f.read<std::int64_t>("clock/integers");
@@ -83,13 +91,37 @@ void read_checkpoint(const std::string& case_dir, const Model& md, State& st, Ru
   const auto work = f.read<double>("dies/work", 3);
   for (std::size_t k = 0; k < dies.size(); ++k)
     dies[k].press_work = work[3 * k], dies[k].friction_work = work[3 * k + 1], dies[k].contact_work = work[3 * k + 2];
-  st.u = f.read<double>("particles/u", 3);
-  st.v = f.read<double>("particles/v", 3);
   st.cp_inv = f.read<double>("points/cp_inv", 6);
   st.ep = f.read<double>("points/ep");
   st.wp = f.read<double>("points/wp");
-  if (st.u.size() != 3 * md.n || st.v.size() != 3 * md.n || st.ep.size() != md.m)
-    throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
+  if (st.ep.size() != md.m) throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
+  const auto u = f.read<double>("particles/u", 3), v = f.read<double>("particles/v", 3);
+  if (updates == 0) {
+    st.u = u, st.v = v;
+    if (st.u.size() != 3 * md.n || st.v.size() != 3 * md.n)
+      throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
+    return;
+  }
+  // Written after reference updates: its local particles are not the subdomain's. The owned ones
+  // (always in both) are taken by global id; the caller rebuilds on the checkpoint's reference.
+  const auto gid = f.read<std::int64_t>("particles/global_id");
+  const auto u_ref = f.read<double>("particles/u_ref", 3);
+  md.point_X = f.read<double>("points/X", 3);
+  st.J_ref = f.read<double>("points/J_ref");
+  if (u.size() != 3 * gid.size() || v.size() != u.size() || u_ref.size() != u.size() || md.point_X.size() != 3 * md.m ||
+      st.J_ref.size() != md.m)
+    throw Error(path + ": checkpoint datasets disagree with each other's counts");
+  st.u_ref.assign(3 * md.n, 0.0);
+  std::size_t k = 0;
+  for (std::size_t I = 0; I < md.n; ++I) {
+    while (k < gid.size() && gid[k] < md.global_id[I]) ++k;
+    const bool found = k < gid.size() && gid[k] == md.global_id[I];
+    if (!found && md.owned[I])
+      throw Error(path + ": owned particle " + std::to_string(md.global_id[I]) + " is missing from the checkpoint");
+    if (found)
+      for (int i = 0; i < 3; ++i) st.u[3 * I + i] = u[3 * k + i], st.v[3 * I + i] = v[3 * k + i], st.u_ref[3 * I + i] = u_ref[3 * k + i];
+  }
+  st.reference_updates = updates;
 }
 
 }  // namespace rk

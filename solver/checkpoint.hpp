@@ -23,8 +23,9 @@ std::string checkpoint_path(const std::string& case_dir, int rank);
 void write_checkpoint(const std::string& case_dir, const Model& md, const State& st, const RunClock& clock,
                       const std::vector<DieTotals>& dies);
 
-// Reads this rank's checkpoint into st/clock/dies; checks it belongs to this model.
-void read_checkpoint(const std::string& case_dir, const Model& md, State& st, RunClock& clock,
+// Reads this rank's checkpoint into st/clock/dies; checks it belongs to this model. After reference
+// updates it also sets md.point_X and st.u_ref, J_ref (the caller then rebuilds the model).
+void read_checkpoint(const std::string& case_dir, Model& md, State& st, RunClock& clock,
                      std::vector<DieTotals>& dies);
 
 }  // namespace rk

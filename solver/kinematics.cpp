@@ -1,24 +1,45 @@
 #include "kinematics.hpp"
 
 namespace rk {
+namespace {
 
-void compute_deformation_gradient(const Model& md, State& st) {
+template <bool kUpdated>
+void gather_gradients(const Model& md, State& st) {
   for (std::size_t g = 0; g < md.m; ++g) {
     double F[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
-      const double* u = &st.u[3 * std::size_t(md.nbr[k])];
+      const std::size_t J = 3 * std::size_t(md.nbr[k]);
       const double* d = &md.dN[3 * std::size_t(k)];
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) F[3 * i + j] += u[i] * d[j];
+      for (int i = 0; i < 3; ++i) {
+        const double u = kUpdated ? st.u[J + i] - st.u_ref[J + i] : st.u[J + i];
+        for (int j = 0; j < 3; ++j) F[3 * i + j] += u * d[j];
+      }
     }
     double* out = &st.F[9 * g];
     for (int i = 0; i < 9; ++i) out[i] = F[i];
     st.J[g] = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) + F[2] * (F[3] * F[7] - F[4] * F[6]);
   }
+}
+
+}  // namespace
+
+void compute_deformation_gradient(const Model& md, State& st) {
+  if (st.u_ref.empty()) gather_gradients<false>(md, st);
+  else gather_gradients<true>(md, st);
   for (std::size_t c = 0; c < md.cells; ++c) {
     double wJ = 0, w = 0;
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) wJ += md.weight[g] * st.J[g], w += md.weight[g];
     st.cell_J[c] = wJ / w;
+  }
+}
+
+void constrained_displacement(const Model& md, const State& st, std::size_t q, double uh[3]) {
+  const bool updated = !st.u_ref.empty();
+  const std::size_t I = 3 * std::size_t(md.ebc_particles[q]);
+  for (int i = 0; i < 3; ++i) uh[i] = updated ? st.u_ref[I + i] : 0.0;
+  for (auto k = md.ebc_offsets[q]; k < md.ebc_offsets[q + 1]; ++k) {
+    const std::size_t J = 3 * std::size_t(md.ebc_cols[k]);
+    for (int i = 0; i < 3; ++i) uh[i] += md.ebc_N[k] * (updated ? st.u[J + i] - st.u_ref[J + i] : st.u[J + i]);
   }
 }
 

@@ -1,5 +1,6 @@
 // Gather: F_g = I + sum_I d_I (x) grad_X N_I(X_g) at every integration point (total Lagrangian),
-// and the F-bar cell average of det F.
+// and the F-bar cell average of det F. After a reference update (reference_update.hpp) the same
+// gather on the displacement since the update, d_I - d_I^ref, with the shapes of the new reference.
 #pragma once
 #include "model.hpp"
 #include "state.hpp"
@@ -7,5 +8,9 @@
 namespace rk {
 
 void compute_deformation_gradient(const Model& md, State& st);
+
+// u^h at owned constrained particle q's reference position (its row md.ebc_*), from t = 0:
+// d_I^ref + sum_J N_J (d_J - d_J^ref) (d^ref = 0 before the first reference update).
+void constrained_displacement(const Model& md, const State& st, std::size_t q, double uh[3]);
 
 }  // namespace rk

@@ -13,12 +13,12 @@ namespace rk {
 namespace {
 
 void build_shape_functions(Model& md, const Subdomain& sub, const Scene& scene) {
-  const LocalShapes shapes(md.X, sub.volume, md.spacing, scene);
+  const LocalShapes shapes(md.Xr, sub.volume, md.spacing, scene);
   md.nbr_offsets.assign(1, 0);
   md.dN_max.resize(md.m);
   for (std::size_t g = 0; g < md.m; ++g) {
     const std::size_t k0 = md.nbr.size();
-    const RkResult r = shapes.append(&sub.point_X[3 * g], md.nbr, md.N, md.dN);  // ascending global id
+    const RkResult r = shapes.append(&md.point_X[3 * g], md.nbr, md.N, md.dN);  // ascending global id
     if (!r.regular) {
       std::ostringstream s;
       s << "rank " << md.rank << ": the RK moment matrix is singular at the integration point at (" << sub.point_X[3 * g]
@@ -35,7 +35,8 @@ void build_shape_functions(Model& md, const Subdomain& sub, const Scene& scene) 
   }
 }
 
-// The shortest reference edge of each cell (hexahedra: 12 edges, tetrahedra: 6), for the time step.
+// The shortest edge of each cell at t = 0 (hexahedra: 12 edges, tetrahedra: 6), for the time step; a
+// reference update scales it with the spacing of its nodes (reference_update.cpp).
 std::vector<double> shortest_edges(const Model& md) {
   static constexpr int kHex[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
                                       {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
@@ -56,14 +57,17 @@ std::vector<double> shortest_edges(const Model& md) {
 
 }  // namespace
 
-Model build_model(const Subdomain& sub, const Scene& scene) {
+Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<double>* initial_X) {
   Model md;
   md.rank = int(sub.rank);
   md.ranks = int(sub.ranks);
   md.n = sub.particle_count();
   md.global_id = sub.global_id;
-  md.X = sub.X;
+  md.X = initial_X ? *initial_X : sub.X;
+  md.Xr = sub.X;
+  md.volume = sub.volume;
   md.spacing = sub.spacing;
+  md.spacing0 = sub.spacing;
   md.density = scene.material.density;
   md.mass.resize(md.n);
   md.owned.resize(md.n);
@@ -77,7 +81,9 @@ Model build_model(const Subdomain& sub, const Scene& scene) {
 
   md.m = sub.point_count();
   md.weight = sub.point_weight;
+  md.point_X = sub.point_X;
   md.cells = sub.cell_count();
+  md.cell_global_id = sub.cell_global_id;
   md.cell_node_offsets = sub.cell_node_offsets;
   md.cell_nodes = sub.cell_nodes;
   md.cell_points.assign(md.cells + 1, 0);

@@ -1,6 +1,7 @@
-// Offline data (never changes during a run, never checkpointed): the local particles, the rank's
-// integration points with their neighbour lists and RK shape-function values and gradients stored in
-// CSR aligned with the neighbour columns, the cells (for F-bar and the time step), the constraints.
+// Offline data (changes only at a reference update, never checkpointed): the local particles, the
+// rank's integration points with their neighbour lists and RK shape-function values and gradients
+// stored in CSR aligned with the neighbour columns, the cells (for F-bar and the time step), the
+// constraints.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -17,7 +18,11 @@ struct Model {
   // particles (local = owned + overlap), SoA
   std::size_t n = 0;
   std::vector<std::int64_t> global_id;
-  std::vector<double> X, mass, spacing;
+  std::vector<double> X, mass, volume, spacing;  // X: initial position (t = 0)
+  // Xr: the reference positions the shape functions are built on; X until a reference update
+  // (reference_update.hpp), then the particles' positions X + u at the last update
+  std::vector<double> Xr;
+  std::vector<double> spacing0;  // h_I at t = 0 (spacing: on the reference configuration)
   std::vector<std::uint8_t> owned, surface;
   // essential BCs (boundary/constraints.cpp): each local particle's constrained directions e_k,
   // orthonormal, CSR per particle; the value g_k(t) = coef * stroke(t) of prescribed face
@@ -34,13 +39,15 @@ struct Model {
 
   // integration points, SoA; neighbours and shape data in CSR (point -> columns)
   std::size_t m = 0;
-  std::vector<double> weight;
+  std::vector<double> weight;   // reference volume at t = 0 (m^3)
+  std::vector<double> point_X;  // 3 per point: its position in the reference configuration (Xr)
   std::vector<std::int32_t> nbr_offsets, nbr;
   std::vector<double> N, dN;   // N_I(X_g); dN_I/dX (3 per column)
   std::vector<double> dN_max;  // max_I |grad N_I(X_g)|, bounds the force contributions
 
   // cells: their points are contiguous, cell_points[c]..cell_points[c+1]
   std::size_t cells = 0;
+  std::vector<std::int64_t> cell_global_id;
   std::vector<std::int32_t> cell_points, cell_node_offsets, cell_nodes;
   std::vector<double> cell_h0;  // shortest reference edge, for the stable time step
 
@@ -62,8 +69,9 @@ struct Model {
 };
 
 // Builds the model from this rank's subdomain: neighbour search and shape functions at the points.
-// Throws rk::Error naming the point if a moment matrix is singular.
-Model build_model(const Subdomain& sub, const Scene& scene);
+// Throws rk::Error naming the point if a moment matrix is singular. `initial_X` (3 per local
+// particle): the t = 0 positions when sub.X is an updated reference configuration.
+Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<double>* initial_X = nullptr);
 
 // Quasi-static forming in explicit time: multiplies the density (masses and wave speed) by `factor`.
 void scale_mass(Model& md, double factor);

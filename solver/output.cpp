@@ -10,6 +10,7 @@
 #include "durable_file.hpp"
 #include "error.hpp"
 #include "h5file.hpp"
+#include "kinematics.hpp"
 
 namespace rk {
 namespace {
@@ -57,9 +58,9 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
   double bound[kProjected] = {};
   for (std::size_t g = 0; g < md.m; ++g) {
     double vm, p;
-    cauchy_measures(&st.tau[6 * g], st.J[g], vm, p);
+    cauchy_measures(&st.tau[6 * g], st.total_J(g), vm, p);
     const double* tau = &st.tau[6 * g];
-    const double J = st.J[g];
+    const double J = st.total_J(g);
     const double values[kProjected] = {1.0, st.ep[g], vm, p, tau[0] / J, tau[1] / J, tau[2] / J, tau[3] / J, tau[4] / J, tau[5] / J};
     double nmax = 0;
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) nmax = std::max(nmax, std::abs(md.N[k]));
@@ -88,11 +89,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     if (!md.owned[I]) continue;
     gid.push_back(md.global_id[I]);
     double uh[3] = {st.u[3 * I], st.u[3 * I + 1], st.u[3 * I + 2]};
-    if (row[I] >= 0) {
-      uh[0] = uh[1] = uh[2] = 0;
-      for (auto k = md.ebc_offsets[row[I]]; k < md.ebc_offsets[row[I] + 1]; ++k)
-        for (int i = 0; i < 3; ++i) uh[i] += md.ebc_N[k] * st.u[3 * md.ebc_cols[k] + i];
-    }
+    if (row[I] >= 0) constrained_displacement(md, st, std::size_t(row[I]), uh);
     for (int i = 0; i < 3; ++i) {
       x.push_back(md.X[3 * I + i] + uh[i]);
       u.push_back(uh[i]);

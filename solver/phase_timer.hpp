@@ -5,9 +5,9 @@
 
 namespace rk {
 
-enum Phase { kDeformation, kStress, kTimeStep, kInternalForce, kExchange, kUpdate, kOutput, kPhaseCount };
+enum Phase { kDeformation, kStress, kTimeStep, kInternalForce, kExchange, kUpdate, kOutput, kReference, kPhaseCount };
 inline constexpr std::array<const char*, kPhaseCount> kPhaseNames = {
-    "deformation_gradient", "stress_update", "time_step", "internal_force", "overlap_exchange", "update", "output"};
+    "deformation_gradient", "stress_update", "time_step", "internal_force", "overlap_exchange", "update", "output", "reference_update"};
 
 class PhaseTimer {
  public:

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "boundary/essential_bc.hpp"
@@ -23,6 +24,7 @@
 #include "output.hpp"
 #include "overlap_exchange.hpp"
 #include "phase_timer.hpp"
+#include "reference_update.hpp"
 #include "state.hpp"
 #include "stress_update.hpp"
 #include "subdomain.hpp"
@@ -100,12 +102,12 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   auto ebc = collectively(comm, [&] { return std::make_unique<EssentialBcs>(md, scene, comm); });
   ebc->apply(md, st, 0.0, 0.0, 0.0, st.v);  // initial velocities that meet the conditions' rates
   const bool has_gravity = norm(scene.loads.gravity) > 0;
-  DieContact dies(md, scene, md.dies);
+  auto dies = std::make_unique<DieContact>(md, scene, md.dies);
   RunClock clock;
   clock.dt_stable = dt0;  // the last unclipped global stable step: sets the penalty stiffness
   clock.kinetic0 = compute_energies(md, st, st.v, comm).kinetic;
   if (opt.restart)
-    collectively(comm, [&] { return read_checkpoint(opt.case_dir, md, st, clock, dies.totals()), 0; });
+    collectively(comm, [&] { return read_checkpoint(opt.case_dir, md, st, clock, dies->totals()), 0; });
   auto results = collectively(comm, [&] {
     return std::make_unique<ResultWriter>(opt.case_dir, md, opt.restart ? clock.frames : -1);
   });
@@ -118,8 +120,25 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   auto write_frame = [&](const std::vector<double>& velocity) {
     collectively(comm, [&] { return results->write_frame(md, st, velocity, comm), 0; });
   };
-  OverlapExchange exchange(md, 3);
+  std::optional<OverlapExchange> exchange;
+  exchange.emplace(md, 3);
   std::vector<double> v_old(st.v.size());
+  // A reference update changes the rank's local particles: what is sized by them is rebuilt.
+  auto rebind = [&] {
+    ebc = collectively(comm, [&] { return std::make_unique<EssentialBcs>(md, scene, comm); });
+    const std::vector<DieTotals> totals = dies->totals();
+    dies = std::make_unique<DieContact>(md, scene, md.dies);
+    dies->totals() = totals;
+    exchange.emplace(md, 3);
+    results = collectively(comm, [&] { return std::make_unique<ResultWriter>(opt.case_dir, md, results->frames()); });
+    v_old.assign(st.v.size(), 0.0);
+  };
+  if (st.reference_updates > 0) {  // a restart after updates: back onto the checkpoint's reference
+    collectively(comm, [&] { return rebuild_on_reference(md, st, scene, comm), 0; });
+    rebind();
+  }
+  const double update_strain = scene.reference_updates.strain;
+  bool update_due = false;
   std::vector<double> row(columns.size(), 0.0), wall_force(scene.rigid_walls.size(), 0.0);
   std::vector<double> sums(6 + scene.rigid_walls.size() + 5 * scene.dies.size() + ebc->reactions().size());  // see the history row
   double max_ebc_error = 0;
@@ -159,19 +178,31 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   for (;;) {
     timer.start();
     const bool last = st.t >= t_end * (1 - 1e-12);
+    if (update_due) {  // the current configuration becomes the reference
+      const Projection project = [&](std::size_t I, double* x) {
+        const double c[3] = {md.X[3 * I] + st.u[3 * I], md.X[3 * I + 1] + st.u[3 * I + 1], md.X[3 * I + 2] + st.u[3 * I + 2]};
+        ebc->project(md, I, st.t, x);
+        for (const auto& w : scene.rigid_walls) project_onto_wall(w, c, x);
+        dies->project(st.t, c, x);
+      };
+      collectively(comm, [&] { return update_reference(md, st, scene, comm, project), 0; });
+      rebind();
+      update_due = false;
+      timer.stop(kReference);
+    }
     const auto every = scene.output.checkpoint_steps;
     if ((every > 0 && st.step % every == 0 && st.step > first_step) || last || checkpoint_due) {  // t^n, v^{n-1/2}
       checkpoint_due = false;
       last_checkpoint_wall = comm.wtime();
       clock.frames = results->frames();
-      collectively(comm, [&] { return write_checkpoint(opt.case_dir, md, st, clock, dies.totals()), 0; });
+      collectively(comm, [&] { return write_checkpoint(opt.case_dir, md, st, clock, dies->totals()), 0; });
       timer.stop(kOutput);
     }
     compute_deformation_gradient(md, st);
     timer.stop(kDeformation);
     const StressHealth health = update_stress(md, st);
     timer.stop(kStress);
-    const double contact_bound = dies.compute(md, st, st.t, dt_stable);
+    const double contact_bound = dies->compute(md, st, st.t, dt_stable);
     timer.stop(kUpdate);
 
     double bound = contact_bound;
@@ -181,9 +212,11 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     // rank 0's clock decides whether a wall-clock checkpoint is due (written at the next step's top)
     const bool clock_due = comm.rank() == 0 && scene.output.checkpoint_minutes > 0 &&
                            comm.wtime() - last_checkpoint_wall >= 60 * scene.output.checkpoint_minutes;
-    double red[4] = {-stable.dt, bound, healthy ? 0.0 : 1.0, clock_due ? 1.0 : 0.0};
-    comm.max(red, 4);
+    double red[5] = {-stable.dt, bound, healthy ? 0.0 : 1.0, clock_due ? 1.0 : 0.0,
+                     update_strain > 0 ? largest_strain_since_update(md, st) : 0.0};
+    comm.max(red, 5);
     checkpoint_due = red[3] > 0;
+    update_due = update_strain > 0 && red[4] > update_strain;
     timer.stop(kTimeStep);
     if (-red[0] < scene.health.min_dt_ratio * dt0) {  // a cell has collapsed: the run would never end
       write_frame(st.v);
@@ -215,13 +248,13 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     const FixedScale scale = FixedScale::for_bound(red[1]);
     clear_internal_force(st);
     add_internal_force(md, st, scale, md.boundary_points);
-    dies.add_to(st, scale);  // contact forces of the owned particles, once over all ranks
+    dies->add_to(st, scale);  // contact forces of the owned particles, once over all ranks
     timer.stop(kInternalForce);
-    exchange.start(st.partial);  // the overlap particles' partials travel ...
+    exchange->start(st.partial);  // the overlap particles' partials travel ...
     timer.stop(kExchange);
     add_internal_force(md, st, scale, md.interior_points);  // ... while the interior is computed
     timer.stop(kInternalForce);
-    exchange.finish(st.partial);
+    exchange->finish(st.partial);
     timer.stop(kExchange);
 
     std::copy(st.v.begin(), st.v.end(), v_old.begin());
@@ -239,7 +272,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       wall_force[w] = r.normal_force;
       contacts += r.contacts;
     }
-    dies.account(st, v_old, dt_avg, st.t);
+    dies->account(st, v_old, dt_avg, st.t);
     if (has_gravity)  // work of the body force on the owned particles
       for (std::size_t I = 0; I < md.n; ++I)
         if (md.owned[I])
@@ -255,18 +288,18 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       std::fill(sums.begin(), sums.end(), 0.0);
       sums[kContacts] = double(contacts);
       sums[kEbcWork] = ebc->step_work();
-      for (std::size_t g = 0; g < md.m; ++g) sums[kVolume] += md.weight[g] * st.J[g];
+      for (std::size_t g = 0; g < md.m; ++g) sums[kVolume] += md.weight[g] * st.total_J(g);
       for (std::size_t w = 0; w < walls; ++w) sums[kScalars + w] = wall_force[w];
       double pen = 0;
-      for (std::size_t d = 0; d < dies.size(); ++d) {
-        const DieTotals& t = dies.totals()[d];
+      for (std::size_t d = 0; d < dies->size(); ++d) {
+        const DieTotals& t = dies->totals()[d];
         double* out = &sums[die0 + 5 * d];
         out[0] = double(t.contacts), out[1] = t.force[0], out[2] = t.force[1], out[3] = t.force[2], out[4] = t.press_work;
         sums[kContacts] += double(t.contacts);
         sums[kSprings] += t.spring_energy, sums[kFriction] += t.friction_work, sums[kDieWork] += t.contact_work;
         pen = std::max(pen, t.max_penetration);
       }
-      const std::size_t face0 = die0 + 5 * dies.size();
+      const std::size_t face0 = die0 + 5 * dies->size();
       std::copy(ebc->reactions().begin(), ebc->reactions().end(), sums.begin() + std::ptrdiff_t(face0));
       comm.sum(sums.data(), int(sums.size()));
       double worst[2] = {pen, ebc->max_error(md, st, st.t)};
@@ -284,8 +317,8 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                        sums[kContacts], pen, ratio, sums[kVolume] / volume0 - 1, worst[1]})
         row[c++] = v;
       for (std::size_t w = 0; w < walls; ++w) row[c++] = sums[kScalars + w];
-      for (std::size_t d = 0; d < dies.size(); ++d) {
-        const Die& die = dies.die(d);
+      for (std::size_t d = 0; d < dies->size(); ++d) {
+        const Die& die = dies->die(d);
         const double* f = &sums[die0 + 5 * d + 1];
         row[c++] = die.motion.stroke(st.t);
         row[c++] = die.force_factor * (f[0] * die.motion.direction[0] + f[1] * die.motion.direction[1] +
@@ -299,9 +332,9 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       }
       collectively(comm, [&] { return history ? (history->write(row), 0) : 0; });  // a full disk stops all ranks
       next_history += hist_dt;
-      if (!dies.empty()) {  // a particle that has left the tools' box: the run went wrong
+      if (!dies->empty()) {  // a particle that has left the tools' box: the run went wrong
         double lo[3], hi[3];
-        dies.box(part_lo, part_hi, st.t, lo, hi);
+        dies->box(part_lo, part_hi, st.t, lo, hi);
         std::size_t out = md.n;
         for (std::size_t I = 0; I < md.n && out == md.n; ++I)
           for (int d = 0; d < 3; ++d) {
@@ -387,6 +420,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                         {"initial_kinetic_energy", kinetic0},
                         {"mass_scaling", md.mass_scaling},
                         {"max_kinetic_internal_ratio", max_ke_ratio},
+                        {"reference_updates", st.reference_updates},
                         {"frames", results->frames()},
                         {"peak_memory_mb_max_rank", mem[0]},
                         {"phases", phases}};

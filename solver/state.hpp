@@ -31,6 +31,13 @@ struct State {
   std::vector<double> force_bound;  // per point: w |P| max|grad N|, bounds its force contributions
   std::vector<double> cell_J;  // cell-averaged det F (F-bar)
 
+  // reference updates (reference_update.hpp); empty until the first: the particles' displacements
+  // at the last update (F is gathered from d - d^ref) and each point's det F up to it
+  std::vector<double> u_ref, J_ref;
+  std::int64_t reference_updates = 0;
+  // det of the deformation gradient from t = 0 (J above is since the last reference update)
+  double total_J(std::size_t g) const { return J_ref.empty() ? J[g] : J[g] * J_ref[g]; }
+
   // work of boundary forces done on the OWNED particles of this rank (sum over ranks = total)
   double contact_work = 0, external_work = 0;
   std::int64_t contacts = 0;

@@ -25,7 +25,7 @@ StressHealth update_stress(const Model& md, State& st) {
       st.psi[g] = up.psi;
       st.wp[g] += up.dissipation;
       wp += md.weight[g] * (t[0] + t[1] + t[2]) / 3;
-      wJ += md.weight[g] * st.J[g];
+      wJ += md.weight[g] * st.total_J(g);
     }
     if (!health.ok) continue;
     const double pc = md.fbar ? wp / wJ : 0.0;
@@ -33,7 +33,7 @@ StressHealth update_stress(const Model& md, State& st) {
       const double* t = &st.tau[6 * g];
       Eigen::Matrix3d te;
       te << t[0], t[3], t[5], t[3], t[1], t[4], t[5], t[4], t[2];
-      if (md.fbar) te.diagonal().array() += st.J[g] * pc - te.trace() / 3;
+      if (md.fbar) te.diagonal().array() += st.total_J(g) * pc - te.trace() / 3;
       const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> F(&st.F[9 * g]);
       Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> P(&st.P[9 * g]);
       P = te * F.inverse().transpose();

@@ -30,6 +30,9 @@ class EssentialBcs {
   // the constraint impulses (at the mid-step velocity, from v_old = v^{n-1/2}) are recorded.
   void apply(const Model& md, State& st, double t_next, double dt, double dt_avg, const std::vector<double>& v_old);
 
+  // Puts local particle I's position x (3) onto its faces at time t: e_k . (x - X_I) = g_k(t).
+  void project(const Model& md, std::size_t I, double t, double* x) const;
+
   // This rank's largest |e_k . u^h(X_I) - g_k(t)| over its owned constrained particles (m).
   double max_error(const Model& md, const State& st, double t) const;
 

@@ -67,6 +67,22 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
   return largest;
 }
 
+void DieContact::project(double t, const double* c, double* x) const {
+  for (std::size_t k = 0; k < dies_.size(); ++k) {
+    const DieMotion& mo = dies_[k].motion;
+    const double stroke = mo.stroke(t);
+    double yc[3], yx[3];
+    for (int i = 0; i < 3; ++i) yc[i] = c[i] - stroke * mo.direction[i], yx[i] = x[i] - stroke * mo.direction[i];
+    const DieHit now = search_[k]->nearest(yc), moved = search_[k]->nearest(yx);
+    if (now.found && now.gap < 0) {  // in contact: it stays where it is
+      for (int i = 0; i < 3; ++i) x[i] = c[i];
+      return;
+    }
+    if (moved.found && moved.gap < 0)
+      for (int i = 0; i < 3; ++i) x[i] -= moved.gap * moved.normal[i];
+  }
+}
+
 void DieContact::box(const double part_lo[3], const double part_hi[3], double t, double lo[3], double hi[3]) const {
   for (int d = 0; d < 3; ++d) lo[d] = part_lo[d], hi[d] = part_hi[d];
   for (std::size_t k = 0; k < dies_.size(); ++k) {

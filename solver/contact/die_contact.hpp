@@ -40,6 +40,11 @@ class DieContact {
   // After the velocity update: the work of this step's contact forces with vbar.
   void account(const State& st, const std::vector<double>& v_old, double dt_avg, double t);
 
+  // A reference update's new position x of a particle whose position is now c: a particle in
+  // contact stays at c (its contact force does not jump), one that is not is moved out of any die
+  // it would be inside.
+  void project(double t, const double* c, double* x) const;
+
   // The box the part may move in: its initial box joined with every die's box at time t, grown by a
   // quarter of its largest side. A particle outside has left the tools (a health check).
   void box(const double part_lo[3], const double part_hi[3], double t, double lo[3], double hi[3]) const;

@@ -1,13 +1,22 @@
 #include "contact/rigid_wall.hpp"
 
+#include <cmath>
+
 namespace rk {
+
+void project_onto_wall(const RigidWall& wall, const double* c, double* x) {
+  double now = 0, moved = 0;
+  for (int i = 0; i < 3; ++i) now += (c[i] - wall.point[i]) * wall.normal[i], moved += (x[i] - wall.point[i]) * wall.normal[i];
+  const double on = 1e-12 * (std::abs(wall.point[0]) + std::abs(wall.point[1]) + std::abs(wall.point[2]) + 1.0);
+  if (moved < 0 || now <= on)
+    for (int i = 0; i < 3; ++i) x[i] -= moved * wall.normal[i];
+}
 
 WallResult apply_rigid_wall(const Model& md, State& st, const RigidWall& wall, double dt_next, double dt_avg,
                             const std::vector<double>& v_old) {
   WallResult r;
   const double* n = wall.normal.data();
   for (std::size_t I = 0; I < md.n; ++I) {
-    if (!md.surface[I]) continue;
     double* v = &st.v[3 * I];
     double gap = 0, vn = 0;
     for (int i = 0; i < 3; ++i) {

@@ -1,0 +1,39 @@
+// Reference-configuration updates. Total-Lagrangian RK kernels keep the neighbours and the support
+// shapes of t = 0; where the material shears hard (back extrusion: the metal turning the punch
+// corner) the supports become thin slivers that no longer hold the material together. An update
+// makes the current configuration the new reference: particles and integration points move to where
+// the material they sit in is, x = X + u^h(X) (the points keep their t = 0 volumes as weights), the
+// shape functions are rebuilt there with supports sized by the particles' new spacings, and the
+// plastic state is pushed forward (C_p^-1 <- Fbar C_p^-1 Fbar^T, so the next stress update is
+// unchanged). Velocities, masses and stored energies are untouched.
+//
+// Parallel: the points stay on their rank; the rank's local particles are found again with rkprep's
+// rules on the new reference (local_particles.hpp), from the owned particles gathered by every rank,
+// so every rank count builds the same shape functions (bitwise).
+#pragma once
+#include <functional>
+
+#include "comm.hpp"
+#include "model.hpp"
+#include "scene.hpp"
+#include "state.hpp"
+
+namespace rk {
+
+// Largest norm of the Green strain E = (F^T F - I) / 2 since the last update over this rank's points.
+double largest_strain_since_update(const Model& md, const State& st);
+
+// Puts owned particle I's new reference position x (3) where it may be: onto its essential-BC
+// faces, onto the rigid walls and dies it touches, out of those it would be inside.
+using Projection = std::function<void(std::size_t I, double* x)>;
+
+// The update at the current state (collective).
+void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm, const Projection& project);
+
+// Rebuilds this rank's model on the reference positions X + d^ref and moves the particle state onto
+// the new local particles. Reads only the owned particles' X, d, v, d^ref and md.point_X, so it also
+// restores a checkpoint written after updates (collective; throws rk::Error, e.g. for a singular
+// moment matrix, naming the point).
+void rebuild_on_reference(Model& md, State& st, const Scene& scene, const Comm& comm);
+
+}  // namespace rk
