@@ -392,9 +392,9 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
 
   // solve.json: totals and per-phase times (min/max over ranks)
   const double wall = comm.wtime() - wall0;
-  double counts[2] = {0, double(md.m)};
+  double counts[3] = {0, double(md.m), double(md.nbr.size())};
   for (std::size_t I = 0; I < md.n; ++I) counts[0] += md.owned[I];
-  comm.sum(counts, 2);
+  comm.sum(counts, 3);
   std::array<double, kPhaseCount> lo = timer.seconds, hi = timer.seconds;
   comm.min(lo.data(), kPhaseCount);
   comm.max(hi.data(), kPhaseCount);
@@ -411,6 +411,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                         {"ranks", comm.size()},
                         {"particles", std::int64_t(counts[0])},
                         {"integration_points", std::int64_t(counts[1])},
+                        {"neighbours_per_point", counts[2] / std::max(counts[1], 1.0)},  // at the end
                         {"point_updates_per_s", loop_s > 0 ? counts[1] * double(st.step) / loop_s : 0.0},
                         {"ns_per_point_update", st.step > 0 ? 1e9 * loop_s * comm.size() / (counts[1] * double(st.step)) : 0.0},
                         {"energy_error", last_error},
