@@ -25,7 +25,8 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     f.set_attr("particles", std::int64_t(md.n));
     f.set_attr("points", std::int64_t(md.m));
     f.write("clock/scalars", std::vector<double>{st.t, st.dt_half, st.contact_work, st.external_work, c.next_output,
-                                                 c.next_history, c.dt_stable, c.kinetic0, c.last_error, c.max_ke_ratio});
+                                                 c.next_history, c.dt_stable, c.kinetic0, c.last_error, c.max_ke_ratio,
+                                                 st.update_work});
     f.write("clock/integers", std::vector<std::int64_t>{st.step, c.frames, std::int64_t(dies.size())});
     std::vector<double> die_work;
     for (const auto& d : dies) die_work.insert(die_work.end(), {d.press_work, d.friction_work, d.contact_work});
@@ -49,7 +50,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
   bool readable = false;
   try {
     H5File check(tmp, H5File::Mode::read);
-    readable = check.read<double>("clock/scalars").size() == 10 && check.read<std::int64_t>("clock/integers").size() == 3 &&
+    readable = check.read<double>("clock/scalars").size() == 11 && check.read<std::int64_t>("clock/integers").size() == 3 &&
                check.read<double>("dies/work", 3).size() == 3 * dies.size() && check.read<double>("particles/u", 3) == st.u &&
                check.read<double>("particles/v", 3) == st.v && check.read<double>("points/cp_inv", 6) == st.cp_inv &&
                check.read<double>("points/ep") == st.ep && check.read<double>("points/wp") == st.wp;
@@ -82,11 +83,11 @@ void read_checkpoint(const std::string& case_dir, Model& md, State& st, RunClock
     throw Error(path + ": the checkpoint does not match this case's subdomain (re-run from the start)");
   const auto s = f.read<double>("clock/scalars");
   const auto i = f.read<std::int64_t>("clock/integers");
-  if (s.size() != 10 || i.size() != 3 || i[2] != std::int64_t(dies.size()))
+  if (s.size() != 11 || i.size() != 3 || i[2] != std::int64_t(dies.size()))
     throw Error(path + ": the checkpoint's run clock or die count does not match");
   st.t = s[0], st.dt_half = s[1], st.contact_work = s[2], st.external_work = s[3];
   c.next_output = s[4], c.next_history = s[5], c.dt_stable = s[6], c.kinetic0 = s[7], c.last_error = s[8],
-  c.max_ke_ratio = s[9];
+  c.max_ke_ratio = s[9], st.update_work = s[10];
   st.step = i[0], c.frames = i[1];
   const auto work = f.read<double>("dies/work", 3);
   for (std::size_t k = 0; k < dies.size(); ++k)

@@ -136,21 +136,26 @@ void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm
       push_forward(F, &st.cp_inv[6 * g]);
       st.J_ref[g] *= st.J[g];
     }
-  // The owned particles' new reference positions: where the material they sit in is now,
-  // x_I = X_I + u^h(X_I) (their coefficients X + d crowd where a wall or die holds them, and crowded
-  // particles make zero-energy modes), put back onto their faces and onto the walls and dies they
-  // touch. The coefficients d_I become x_I - X_I; the velocities are kept (kinetic energy and
-  // momentum too). Nothing here throws: every rank must reach the rebuild's collectives.
+  // The owned particles' new reference positions and velocities: those of the material they sit in,
+  // x_I = X_I + u^h(X_I) and v^h(X_I) (coefficients that the old shape functions smoothed away would
+  // strain the new ones: kept, they jolted the dies' contacts), positions put back onto their faces
+  // and onto the walls and dies they touch. The coefficients become d_I = x_I - X_I and v_I = v^h;
+  // the kinetic energy this removes is booked as update_work. Nothing here throws: every rank must
+  // reach the rebuild's collectives.
   const LocalShapes shapes(md.Xr, md.volume, md.spacing, scene);
   std::vector<std::int32_t> cols;
-  std::vector<double> N, dN, moved(3 * md.n);
+  std::vector<double> N, dN, moved(3 * md.n), velocity(st.v);
   for (std::size_t I = 0; I < md.n; ++I) {
     if (!md.owned[I]) continue;
     cols.clear(), N.clear(), dN.clear();
     double x[3] = {md.Xr[3 * I], md.Xr[3 * I + 1], md.Xr[3 * I + 2]};
     if (shapes.append(&md.Xr[3 * I], cols, N, dN).regular) {
+      for (int i = 0; i < 3; ++i) velocity[3 * I + i] = 0;
       for (std::size_t k = 0; k < cols.size(); ++k)
-        for (int i = 0; i < 3; ++i) x[i] += N[k] * (st.u[3 * std::size_t(cols[k]) + i] - st.u_ref[3 * std::size_t(cols[k]) + i]);
+        for (int i = 0; i < 3; ++i) {
+          x[i] += N[k] * (st.u[3 * std::size_t(cols[k]) + i] - st.u_ref[3 * std::size_t(cols[k]) + i]);
+          velocity[3 * I + i] += N[k] * st.v[3 * std::size_t(cols[k]) + i];
+        }
     } else {  // u^h cannot be evaluated there (a particle left alone): it stays at X + d
       for (int i = 0; i < 3; ++i) x[i] += st.u[3 * I + i] - st.u_ref[3 * I + i];
     }
@@ -159,7 +164,10 @@ void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm
   }
   for (std::size_t I = 0; I < md.n; ++I)
     if (md.owned[I])
-      for (int i = 0; i < 3; ++i) st.u[3 * I + i] = st.u_ref[3 * I + i] = moved[3 * I + i];
+      for (int i = 0; i < 3; ++i) {
+        st.update_work += 0.5 * md.mass[I] * (velocity[3 * I + i] * velocity[3 * I + i] - st.v[3 * I + i] * st.v[3 * I + i]);
+        st.u[3 * I + i] = st.u_ref[3 * I + i] = moved[3 * I + i], st.v[3 * I + i] = velocity[3 * I + i];
+      }
   ++st.reference_updates;
   rebuild_on_reference(md, st, scene, comm);
 }

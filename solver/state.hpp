@@ -40,6 +40,7 @@ struct State {
 
   // work of boundary forces done on the OWNED particles of this rank (sum over ranks = total)
   double contact_work = 0, external_work = 0;
+  double update_work = 0;  // kinetic energy changed by reference updates (<= 0: smoothed away)
   std::int64_t contacts = 0;
 
   // v_I = velocity + gradient X_I (gradient row-major: d v_i / d X_j)
