@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <system_error>
+#include <vector>
 
 #include <unistd.h>
 
@@ -42,9 +44,20 @@ rk::Subdomain sample() {
   return s;
 }
 
-std::string temp(const std::string& name) {
-  return (fs::temp_directory_path() / ("rk_test_" + std::to_string(::getpid()) + "_" + name)).string();
-}
+std::string temp_prefix() { return "rk_test_" + std::to_string(::getpid()) + "_"; }
+
+std::string temp(const std::string& name) { return (fs::temp_directory_path() / (temp_prefix() + name)).string(); }
+
+// Removes this process's temporary files (and their hash files) when the tests end.
+struct TempFiles {
+  ~TempFiles() {
+    std::error_code ec;
+    std::vector<fs::path> mine;
+    for (const auto& e : fs::directory_iterator(fs::temp_directory_path(), ec))
+      if (e.path().filename().string().rfind(temp_prefix(), 0) == 0) mine.push_back(e.path());
+    for (const auto& p : mine) fs::remove(p, ec);
+  }
+} temp_files;
 
 void rehash(const std::string& path) {  // as if the file had been written like this
   std::ifstream in(path, std::ios::binary);
