@@ -53,7 +53,10 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     readable = check.read<double>("clock/scalars").size() == 11 && check.read<std::int64_t>("clock/integers").size() == 3 &&
                check.read<double>("dies/work", 3).size() == 3 * dies.size() && check.read<double>("particles/u", 3) == st.u &&
                check.read<double>("particles/v", 3) == st.v && check.read<double>("points/cp_inv", 6) == st.cp_inv &&
-               check.read<double>("points/ep") == st.ep && check.read<double>("points/wp") == st.wp;
+               check.read<double>("points/ep") == st.ep && check.read<double>("points/wp") == st.wp &&
+               (st.reference_updates == 0 ||
+                (check.read<double>("particles/u_ref", 3) == st.u_ref && check.read<double>("points/X", 3) == md.point_X &&
+                 check.read<double>("points/J_ref") == st.J_ref));
   } catch (const Error&) {
   }
   if (!readable) throw Error(tmp + ": the checkpoint did not read back (disk full?); the previous one is kept");

@@ -35,8 +35,8 @@ void build_shape_functions(Model& md, const Subdomain& sub, const Scene& scene) 
   }
 }
 
-// The shortest edge of each cell at t = 0 (hexahedra: 12 edges, tetrahedra: 6), for the time step; a
-// reference update scales it with the spacing of its nodes (reference_update.cpp).
+// The shortest edge of each cell at t = 0 (hexahedra: 12 edges, tetrahedra: 6), for the time step; it
+// is kept through reference updates (the step then follows the points' stretch since the update).
 std::vector<double> shortest_edges(const Model& md) {
   static constexpr int kHex[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
                                       {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};

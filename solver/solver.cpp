@@ -140,7 +140,10 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   const double update_strain = scene.reference_updates.strain;
   bool update_due = false;
   std::vector<double> row(columns.size(), 0.0), wall_force(scene.rigid_walls.size(), 0.0);
-  std::vector<double> sums(7 + scene.rigid_walls.size() + 5 * scene.dies.size() + ebc->reactions().size());  // see the history row
+  // Global sums for a history row, laid out as: the scalars below, one force per rigid wall, then
+  // (contacts, fx, fy, fz, press work) per die, then (fx, fy, fz) per fixed or prescribed face.
+  enum { kContacts, kSprings, kFriction, kDieWork, kVolume, kEbcWork, kUpdateWork, kScalars };
+  std::vector<double> sums(kScalars + scene.rigid_walls.size() + 5 * scene.dies.size() + ebc->reactions().size());
   double max_ebc_error = 0;
   double part_lo[3] = {1e300, 1e300, 1e300}, part_hi[3] = {-1e300, -1e300, -1e300};  // the part's initial box
   for (std::size_t I = 0; I < md.n; ++I)
@@ -281,9 +284,6 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
 
     if (last || st.t >= next_history - 1e-9 * hist_dt) {  // history row at t^n
       Energies e = compute_energies(md, st, v_old, comm);
-      // Global sums for the row, laid out as: the scalars below, one force per rigid wall, then
-      // (contacts, fx, fy, fz, press work) per die, then (fx, fy, fz) per fixed or prescribed face.
-      enum { kContacts, kSprings, kFriction, kDieWork, kVolume, kEbcWork, kUpdateWork, kScalars };
       const std::size_t walls = wall_force.size(), die0 = kScalars + walls;
       std::fill(sums.begin(), sums.end(), 0.0);
       sums[kContacts] = double(contacts);
