@@ -10,6 +10,7 @@
 #include "die_surface.hpp"
 #include "discretize.hpp"
 #include "partition.hpp"
+#include "process_memory.hpp"
 #include "scene.hpp"
 #include "subdomain.hpp"
 
@@ -117,6 +118,7 @@ int run(int argc, char** argv) {
       {"volume_m3", total_volume},
       {"phases_s", timer.json()},
       {"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()},
+      {"peak_memory_mb", rk::process_memory_mb("VmHWM:")},
       {"partition", report}};
   std::ofstream(fs::path(out) / "prep.json") << prep.dump(2) << "\n";
   if (!quiet) {

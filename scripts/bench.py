@@ -1,76 +1,225 @@
 #!/usr/bin/python3
-"""make bench: strong scaling of a large Taylor bar (>= 100k particles) over MPI ranks.
+"""make bench: the performance targets of issue 7, measured in one run on this machine.
 
-Prepares the case once per rank count (reused when present), runs a fixed simulated time, and
-reports wall time, speedup and efficiency against the seed's Table 2, time in communication per
-step, and the partition report. Timings are ratios within one run on one machine.
-  scripts/bench.py --bin build/bin --work build/bench [--ranks 1 2] [--spacing 0.18e-3] [--end 1e-6]
+1. machine: one core's memory bandwidth and peak flop rate (build/bin/rkmachine);
+2. seed: the seed-resolution Taylor bar (1369 particles) to 80 us on one rank, setup included:
+   ns per integration-point update with the neighbour count, beside the machine limit estimated
+   from the bytes and flops one update needs (counted from the kernels, docs/performance.md);
+   the share of setup; footprint radius and final length;
+3. calculix: the same bar in CalculiX (1200 hexahedra, as the seed's LS-DYNA comparison), timed in
+   this run (scripts/calculix_taylor.py installs ccx when missing);
+4. scaling: strong scaling of a large Taylor bar (>= 100k particles) over MPI ranks against the seed's
+   Table 2, with the time in communication per step and the partition report;
+5. size: rkprep at 10k, 100k and 1M particles (wall time, peak memory) and the 1M bar run for a few
+   steps on 2 ranks (memory per rank and per integration point).
+Timings are ratios within one run on one machine. Writes WORK/bench.md and WORK/bench.json.
+  scripts/bench.py [--bin build/bin] [--work build/bench] [--skip calculix size ...]
 """
 import argparse
 import json
 import os
 import subprocess
+import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+SCENE = ROOT / "geometry" / "taylor_bar" / "scene.yaml"
 SEED_SPEEDUP = {1: 1.00, 2: 1.81, 4: 3.21, 8: 6.41, 16: 10.39, 32: 24.14}  # seed Table 2 (Taylor bar)
+SEED_SECONDS = 5323.0  # the seed's Taylor bar on one processor (IBM p690)
+SIZES = {"10k": "0.45e-3", "100k": "0.19e-3", "1M": "0.085e-3"}  # spacing (m) for about that many particles
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1")
+PY = "/usr/bin/python3"
 
 
-def run(args):
-    subprocess.run([str(a) for a in args], check=True, env=ENV)
+def run(args, capture=False):
+    r = subprocess.run([str(a) for a in args], check=True, env=ENV, text=True,
+                       stdout=subprocess.PIPE if capture else None)
+    return r.stdout
+
+
+def prep(a, case, ranks, spacing=None):
+    extra = ["--set", f"discretization.spacing={spacing}"] if spacing else []
+    run([a.bin / "rkprep", SCENE, "--ranks", ranks, "--out", case, "--quiet", *extra])  # always: a case left
+    return json.loads((case / "prep.json").read_text())                                # by an older build may not read
+
+
+def solve(a, case, ranks, *settings):
+    sets = [x for s in settings for x in ("--set", s)]
+    run(["mpirun", "-np", ranks, a.bin / "rksolve", case, "--quiet", *sets])
+    return json.loads((case / "solve.json").read_text())
+
+
+def update_cost(neighbours, plastic_fraction):
+    """Bytes streamed from memory and flops of one integration-point update, counted from the kernels
+    (docs/performance.md has the tally). Per neighbour: kinematics 9 multiply-adds (18 flops) and
+    the scatter 21 flops, reading the column index and grad N (28 bytes) in each of the two loops;
+    the particle data they gather and scatter stays in cache. Per point: the elastic stress update
+    (trial b_e, log by series, F-bar, P = tau F^-T: about 736 flops), the return map of a plastic
+    point (about 594 more), and 584 bytes of point state read and written."""
+    return {"bytes": 56 * neighbours + 584, "flops": 39 * neighbours + 736 + 594 * plastic_fraction}
+
+
+def machine_limit(machine, cost, points):
+    """The fastest one core could do one update: the larger of the memory time (at the bandwidth of
+    the working set's level: in cache up to 16 MiB, else DRAM) and the compute time (at this build's
+    peak, SSE2; the core's AVX-512 FMA peak for reference)."""
+    bw = machine["triad_gb_per_s"]
+    working_set = cost["bytes"] * points
+    gbs = bw["16384_kib"] if working_set <= 16 << 20 else bw["1048576_kib"]
+    t_mem = cost["bytes"] / gbs
+    t_flop = cost["flops"] / machine["gflop_per_s_this_build"]
+    out = {"working_set_mb": working_set / 2**20, "bandwidth_gb_per_s": gbs, "memory_ns": t_mem,
+           "compute_ns": t_flop, "limit_ns": max(t_mem, t_flop)}
+    if "gflop_per_s_avx512_fma" in machine:
+        out["compute_ns_avx512"] = cost["flops"] / machine["gflop_per_s_avx512_fma"]
+    return out
+
+
+def seed_case(a, machine):
+    case = a.work / "taylor_seed_r1"
+    p = prep(a, case, 1)
+    s = solve(a, case, 1)
+    run([a.bin / "rkpost", case, "--quiet"])
+    m = json.loads(run([PY, ROOT / "scripts" / "taylor_metrics.py", case, "--json"], capture=True))
+    cost = update_cost(s["neighbours_per_point"], s["plastic_fraction"])
+    limit = machine_limit(machine, cost, s["integration_points"])
+    total = p["wall_s"] + s["wall_s"]
+    return {"particles": p["particles"], "points": s["integration_points"], "steps": s["steps"],
+            "prep_s": p["wall_s"], "solve_s": s["wall_s"], "setup_s": s["setup_s"], "total_s": total,
+            "setup_fraction": (p["wall_s"] + s["setup_s"]) / total, "ns_per_point_update": s["ns_per_point_update"],
+            "neighbours_per_point": s["neighbours_per_point"], "plastic_fraction": s["plastic_fraction"],
+            "bytes_per_update": cost["bytes"], "flops_per_update": cost["flops"], **limit,
+            "fraction_of_limit": limit["limit_ns"] / s["ns_per_point_update"],
+            "r_f_mm": m["footprint_radius_mm"], "L_f_mm": m["final_length_mm"]}
+
+
+def calculix(a):
+    out = run([PY, ROOT / "scripts" / "calculix_taylor.py", "--work", a.work / "calculix"], capture=True)
+    return json.loads(out.strip().splitlines()[-1])
+
+
+def scaling(a):
+    rows = []
+    for n in a.ranks:
+        case = a.work / f"taylor_{a.spacing}_r{n}"
+        p = prep(a, case, n, a.spacing)
+        s = solve(a, case, n, f"time.end={a.end}", f"time.output_interval={a.end}")
+        loop = s["wall_s"] - s["setup_s"]
+        ph = s["phases"]
+        comm = ph["overlap_exchange"]["max_s"] + ph["time_step"]["max_s"] - ph["time_step"]["min_s"]
+        rows.append({"ranks": n, "particles": p["particles"], "points": p["integration_points"],
+                     "steps": s["steps"], "loop_s": loop, "setup_s": s["setup_s"], "prep_s": p["wall_s"],
+                     "comm_ms_per_step": 1e3 * comm / max(s["steps"], 1),
+                     "ns_per_point_update": s["ns_per_point_update"],
+                     "neighbours_per_point": s["neighbours_per_point"],
+                     "imbalance": p["partition"]["imbalance"],
+                     "overlap_fraction": p["partition"]["overlap_fraction"],
+                     "values_per_step": p["partition"]["values_exchanged_per_step"]})
+    base = rows[0]["loop_s"] * rows[0]["ranks"]
+    for r in rows:
+        r["speedup"] = base / r["loop_s"]
+        r["efficiency"] = r["speedup"] / r["ranks"]
+    return rows
+
+
+def sizes(a):
+    rows = []
+    for label, spacing in SIZES.items():
+        if label == "1M" and "million" in a.skip:
+            continue
+        case = a.work / f"size_{label}"
+        p = prep(a, case, 2, spacing)
+        row = {"size": label, "spacing_m": float(spacing), "particles": p["particles"], "points": p["integration_points"],
+               "prep_s": p["wall_s"], "prep_peak_mb": p["peak_memory_mb"], "phases_s": p["phases_s"]}
+        if label == "1M":  # a few steps: the memory the run holds, per rank and per integration point
+            s = solve(a, case, 2, "time.end=3e-8", "time.output_interval=3e-8")
+            row.update({"solve_steps": s["steps"], "solve_setup_s": s["setup_s"],
+                        "solve_peak_mb_max_rank": s["peak_memory_mb_max_rank"],
+                        "peak_bytes_per_point": s["peak_bytes_per_point"],
+                        "resident_bytes_per_point": s["resident_bytes_per_point"],
+                        "neighbours_per_point": s["neighbours_per_point"]})
+        rows.append(row)
+    return rows
+
+
+def report(res, a):
+    md = [f"rkforge bench, {os.cpu_count()} cores", ""]
+    if "machine" in res:
+        m = res["machine"]
+        bw = ", ".join(f"{k.replace('_kib', ' KiB')}: {v:.0f}" for k, v in m["triad_gb_per_s"].items())
+        md += ["## Machine (one core, build/bin/rkmachine)", "",
+               f"STREAM triad GB/s by working set: {bw}; peak {m['gflop_per_s_this_build']:.1f} GFLOP/s as this build "
+               f"compiles (SSE2), {m.get('gflop_per_s_avx512_fma', float('nan')):.1f} with AVX-512 FMA", ""]
+    if "seed" in res:
+        s = res["seed"]
+        md += ["## Seed-resolution Taylor bar, 80 us, 1 rank", "",
+               "| particles | points | steps | prep (s) | solve (s) | total (s) | setup share | ns/point update | "
+               "neighbours/point | plastic share | bytes, flops per update | machine limit (ns) | fraction of the limit | r_f, L_f (mm) |",
+               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+               f"| {s['particles']} | {s['points']} | {s['steps']} | {s['prep_s']:.2f} | {s['solve_s']:.1f} | {s['total_s']:.1f} | "
+               f"{100 * s['setup_fraction']:.1f} % | {s['ns_per_point_update']:.0f} | {s['neighbours_per_point']:.1f} | "
+               f"{100 * s['plastic_fraction']:.0f} % | {s['bytes_per_update']:.0f} B, {s['flops_per_update']:.0f} | "
+               f"{s['limit_ns']:.0f} (memory {s['memory_ns']:.0f} at {s['bandwidth_gb_per_s']:.0f} GB/s, compute {s['compute_ns']:.0f}; "
+               f"AVX-512 {s.get('compute_ns_avx512', float('nan')):.0f}) | {100 * s['fraction_of_limit']:.0f} % | "
+               f"{s['r_f_mm']:.3f}, {s['L_f_mm']:.3f} |", "",
+               f"Targets: under 300 ns per update at about 30 neighbours; 80 us in under 2 s with setup "
+               f"(the seed: {SEED_SECONDS:.0f} s, {SEED_SECONDS / s['total_s']:.0f}x slower than this run); setup under 20 %.", ""]
+    if "calculix" in res:
+        c = res["calculix"]
+        line = f"{c['code']}, {c['elements']} elements: {c['wall_s']:.1f} s, r_f {c['r_f_mm']:.3f} mm, L_f {c['L_f_mm']:.3f} mm"
+        if "seed" in res:
+            line += f"; rkforge / CalculiX wall time {res['seed']['total_s'] / c['wall_s']:.2f}"
+        md += ["## CalculiX side by side (the same bar, 80 us, one core)", "", line, ""]
+    if "scaling" in res:
+        md += [f"## Strong scaling: Taylor bar, spacing {a.spacing} m, {a.end} s simulated", "",
+               "| ranks | particles | steps | loop (s) | speedup | efficiency | seed speedup | comm+wait (ms/step) | "
+               "ns/point update (x ranks) | neighbours/point | imbalance | overlap fraction | values/step |",
+               "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+        for r in res["scaling"]:
+            seed = SEED_SPEEDUP.get(r["ranks"])
+            md.append(f"| {r['ranks']} | {r['particles']} | {r['steps']} | {r['loop_s']:.2f} | {r['speedup']:.2f} | "
+                      f"{100 * r['efficiency']:.1f} % | {seed if seed else '-'} | {r['comm_ms_per_step']:.2f} | "
+                      f"{r['ns_per_point_update']:.0f} | {r['neighbours_per_point']:.1f} | {r['imbalance']:.3f} | "
+                      f"{r['overlap_fraction']:.4f} | {r['values_per_step']} |")
+        md.append("")
+    if "size" in res:
+        md += ["## Size: rkprep on 2 ranks, and the 1M bar's memory", "",
+               "| size | particles | integration points | prep (s) | prep per 1k particles (ms) | prep peak (MiB) | "
+               "solver peak per rank (MiB) | bytes per point (peak / resident) |", "|---|---|---|---|---|---|---|---|"]
+        for r in res["size"]:
+            mem = (f"{r['solve_peak_mb_max_rank']:.0f} | {r['peak_bytes_per_point']:.0f} / {r['resident_bytes_per_point']:.0f}"
+                   if "solve_peak_mb_max_rank" in r else "- | -")
+            md.append(f"| {r['size']} | {r['particles']} | {r['points']} | {r['prep_s']:.2f} | "
+                      f"{1e6 * r['prep_s'] / r['particles']:.1f} | {r['prep_peak_mb']:.0f} | {mem} |")
+        md.append("")
+    return "\n".join(md)
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--bin", type=Path, default=ROOT / "build" / "bin")
     ap.add_argument("--work", type=Path, default=ROOT / "build" / "bench")
-    ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
-    ap.add_argument("--spacing", default="0.18e-3")
-    ap.add_argument("--end", default="1e-6")
+    ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2], help="scaling: rank counts")
+    ap.add_argument("--spacing", default="0.18e-3", help="scaling: particle spacing (m)")
+    ap.add_argument("--end", default="1e-6", help="scaling: simulated time (s)")
+    ap.add_argument("--skip", nargs="*", default=[], choices=["seed", "calculix", "scaling", "size", "million"])
     a = ap.parse_args()
     a.work.mkdir(parents=True, exist_ok=True)
-    scene = ROOT / "geometry" / "taylor_bar" / "scene.yaml"
-    rows = []
-    for n in a.ranks:
-        case = a.work / f"taylor_{a.spacing}_r{n}"
-        run([a.bin / "rkprep", scene, "--ranks", n, "--out", case, "--quiet",  # always: a case left by an
-             "--set", f"discretization.spacing={a.spacing}"])                 # older build may not read
-        run(["mpirun", "-np", n, a.bin / "rksolve", case, "--quiet", "--set", f"time.end={a.end}",
-             "--set", f"time.output_interval={a.end}"])
-        prep = json.loads((case / "prep.json").read_text())
-        solve = json.loads((case / "solve.json").read_text())
-        loop = solve["wall_s"] - solve["setup_s"]
-        ph = solve["phases"]
-        comm = ph["overlap_exchange"]["max_s"] + ph["time_step"]["max_s"] - ph["time_step"]["min_s"]
-        rows.append({"ranks": n, "particles": prep["particles"], "points": prep["integration_points"],
-                     "steps": solve["steps"], "loop_s": loop, "setup_s": solve["setup_s"], "prep_s": prep["wall_s"],
-                     "comm_ms_per_step": 1e3 * comm / max(solve["steps"], 1),
-                     "ns_per_point_update": solve["ns_per_point_update"],
-                     "neighbours_per_point": solve["neighbours_per_point"],
-                     "imbalance": prep["partition"]["imbalance"],
-                     "overlap_fraction": prep["partition"]["overlap_fraction"],
-                     "values_per_step": prep["partition"]["values_exchanged_per_step"]})
-    base = rows[0]["loop_s"] * rows[0]["ranks"]
-    lines = ["| ranks | particles | steps | loop (s) | speedup | efficiency | seed speedup | comm+wait (ms/step) | "
-             "ns/point update (x ranks) | neighbours/point | imbalance | overlap fraction | values/step |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    for r in rows:
-        r["speedup"] = base / r["loop_s"]
-        r["efficiency"] = r["speedup"] / r["ranks"]
-        seed = SEED_SPEEDUP.get(r["ranks"])
-        lines.append(f"| {r['ranks']} | {r['particles']} | {r['steps']} | {r['loop_s']:.2f} | {r['speedup']:.2f} | "
-                     f"{100 * r['efficiency']:.1f} % | {seed if seed else '-'} | {r['comm_ms_per_step']:.2f} | "
-                     f"{r['ns_per_point_update']:.0f} | {r['neighbours_per_point']:.1f} | {r['imbalance']:.3f} | {r['overlap_fraction']:.4f} | "
-                     f"{r['values_per_step']} |")
-    table = "\n".join(lines)
-    (a.work / "bench.json").write_text(json.dumps(rows, indent=2) + "\n")
-    (a.work / "bench.md").write_text(f"Taylor bar, spacing {a.spacing} m, {a.end} s simulated, "
-                                     f"{os.cpu_count()} cores\n\n{table}\n")
-    print(table)
-    print(f"\nwritten: {a.work / 'bench.md'}, {a.work / 'bench.json'}")
+    res = {"machine": json.loads(run([a.bin / "rkmachine"], capture=True))}
+    steps = {"seed": lambda: seed_case(a, res["machine"]), "calculix": lambda: calculix(a),
+             "scaling": lambda: scaling(a), "size": lambda: sizes(a)}
+    for name, fn in steps.items():
+        if name not in a.skip:
+            print(f"bench: {name} ...", flush=True)
+            res[name] = fn()
+    text = report(res, a)
+    (a.work / "bench.json").write_text(json.dumps(res, indent=2) + "\n")
+    (a.work / "bench.md").write_text(text + "\n")
+    print(text)
+    print(f"written: {a.work / 'bench.md'}, {a.work / 'bench.json'}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -5,19 +5,21 @@
 namespace rk {
 
 std::vector<std::int32_t> local_particles(const LocalParticleRequest& r) {
-  std::vector<std::int32_t> local(r.cell_nodes), found;
-  for (std::size_t g = 0; g < r.points.size() / 3; ++g) {
+  // one mark per particle: linear in the points (collecting every support and sorting them was
+  // O(k n log n) with k ~ 37 columns per point, and held 4k bytes per point: 2.4 GB at 1M particles)
+  std::vector<std::uint8_t> mark(r.grid.size(), 0);
+  std::vector<std::int32_t> found;
+  for (auto I : r.cell_nodes) mark[I] = 1;
+  auto mark_support = [&](const double* x) {
     found.clear();
-    r.grid.covering(&r.points[3 * g], found);
-    local.insert(local.end(), found.begin(), found.end());
-  }
-  for (auto I : r.owned) {
-    found.clear();
-    r.grid.covering(&r.X[3 * std::size_t(I)], found);
-    local.insert(local.end(), found.begin(), found.end());
-  }
-  std::sort(local.begin(), local.end());
-  local.erase(std::unique(local.begin(), local.end()), local.end());
+    r.grid.covering(x, found);
+    for (auto I : found) mark[I] = 1;
+  };
+  for (std::size_t g = 0; g < r.points.size() / 3; ++g) mark_support(&r.points[3 * g]);
+  for (auto I : r.owned) mark_support(&r.X[3 * std::size_t(I)]);
+  std::vector<std::int32_t> local;
+  for (std::size_t I = 0; I < mark.size(); ++I)
+    if (mark[I]) local.push_back(std::int32_t(I));
   return local;
 }
 

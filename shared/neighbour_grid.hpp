@@ -13,6 +13,8 @@ class NeighbourGrid {
   // Appends to `out` the particles I with |x - X_I| < a_I, in ascending index order.
   void covering(const double x[3], std::vector<std::int32_t>& out) const;
 
+  std::size_t size() const { return items_.size(); }  // the particles it holds
+
  private:
   std::int64_t bin_of(const double x[3], int d) const;
   const double* X_;

@@ -24,6 +24,7 @@
 #include "output.hpp"
 #include "overlap_exchange.hpp"
 #include "phase_timer.hpp"
+#include "process_memory.hpp"
 #include "reference_update.hpp"
 #include "state.hpp"
 #include "stress_update.hpp"
@@ -45,13 +46,6 @@ auto collectively(const Comm& comm, Fn fn) {
   }
   comm.check(message.empty(), message);
   return result;
-}
-
-double peak_memory_mb() {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);)
-    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
-  return 0;
 }
 
 // "particle 12 at (x, y, z) m": the current position, for messages the user can act on
@@ -80,6 +74,7 @@ std::vector<std::string> history_columns(const Scene& scene) {
 
 void solve_case(const SolveOptions& opt, const Comm& comm) {
   const double wall0 = comm.wtime();
+  const double baseline_mb = process_memory_mb("VmRSS:");  // the program and its libraries (MPI), before any data
   const Scene scene = collectively(
       comm, [&] { return load_scene(opt.case_dir + "/scene.resolved.yaml", opt.overrides, Side::solve); });
   Model md = collectively(comm, [&] {
@@ -163,6 +158,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   double& max_ke_ratio = clock.max_ke_ratio;
   const double kinetic0 = clock.kinetic0;
   PhaseTimer timer;
+  double plastic_updates = 0, point_updates = 0;  // this run's stress updates, and those that were plastic
   bool checkpoint_due = false;
   double last_checkpoint_wall = comm.wtime();
   const double setup_s = comm.wtime() - wall0;
@@ -204,6 +200,8 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     compute_deformation_gradient(md, st);
     timer.stop(kDeformation);
     const StressHealth health = update_stress(md, st);
+    plastic_updates += double(health.plastic);
+    point_updates += double(md.m);
     timer.stop(kStress);
     const double contact_bound = dies->compute(md, st, st.t, dt_stable);
     timer.stop(kUpdate);
@@ -395,14 +393,20 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
 
   // solve.json: totals and per-phase times (min/max over ranks)
   const double wall = comm.wtime() - wall0;
-  double counts[3] = {0, double(md.m), double(md.nbr.size())};
+  double counts[5] = {0, double(md.m), double(md.nbr.size()), plastic_updates, point_updates};
   for (std::size_t I = 0; I < md.n; ++I) counts[0] += md.owned[I];
-  comm.sum(counts, 3);
+  comm.sum(counts, 5);
   std::array<double, kPhaseCount> lo = timer.seconds, hi = timer.seconds;
   comm.min(lo.data(), kPhaseCount);
   comm.max(hi.data(), kPhaseCount);
-  double mem[2] = {peak_memory_mb(), peak_memory_mb()};
-  comm.max(&mem[0], 1);
+  // memory: the largest rank's peak, and per integration point (with its share of the particles,
+  // neighbours and shape functions) the data above the program's own baseline, summed over ranks:
+  // at the peak (setup temporaries included) and resident at the end (what the time loop holds)
+  const double peak_mb = process_memory_mb("VmHWM:");
+  double mem_max = peak_mb, mem_sum[2] = {peak_mb - baseline_mb, process_memory_mb("VmRSS:") - baseline_mb};
+  comm.max(&mem_max, 1);
+  comm.sum(mem_sum, 2);
+  const double bytes_per_mb_point = 1048576.0 / std::max(counts[1], 1.0);
   if (comm.rank() == 0) {
     nlohmann::json phases = nlohmann::json::object();
     for (int p = 0; p < kPhaseCount; ++p) phases[kPhaseNames[p]] = {{"min_s", lo[p]}, {"max_s", hi[p]}};
@@ -417,6 +421,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                         {"neighbours_per_point", counts[2] / std::max(counts[1], 1.0)},  // at the end
                         {"point_updates_per_s", loop_s > 0 ? counts[1] * double(st.step) / loop_s : 0.0},
                         {"ns_per_point_update", st.step > 0 ? 1e9 * loop_s * comm.size() / (counts[1] * double(st.step)) : 0.0},
+                        {"plastic_fraction", counts[3] / std::max(counts[4], 1.0)},
                         {"energy_error", last_error},
                         {"ebc_method", scene.discretization.ebc_method},
                         {"constraints", ebc->constraints()},
@@ -426,7 +431,9 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                         {"max_kinetic_internal_ratio", max_ke_ratio},
                         {"reference_updates", st.reference_updates},
                         {"frames", results->frames()},
-                        {"peak_memory_mb_max_rank", mem[0]},
+                        {"peak_memory_mb_max_rank", mem_max},
+                        {"peak_bytes_per_point", mem_sum[0] * bytes_per_mb_point},
+                        {"resident_bytes_per_point", mem_sum[1] * bytes_per_mb_point},
                         {"phases", phases}};
     std::ofstream(opt.case_dir + "/solve.json") << j.dump(2) << "\n";
     if (!opt.quiet && progress_shown) std::printf("\n");

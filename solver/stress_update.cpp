@@ -24,6 +24,7 @@ StressHealth update_stress(const Model& md, State& st) {
       t[5] = up.tau(2, 0);
       st.psi[g] = up.psi;
       st.wp[g] += up.dissipation;
+      health.plastic += up.plastic;
       wp += md.weight[g] * (t[0] + t[1] + t[2]) / 3;
       wJ += md.weight[g] * st.total_J(g);
     }

@@ -15,6 +15,7 @@ struct StressHealth {
   bool ok = true;
   std::size_t point = 0;  // first failing point
   double J = 1;
+  std::size_t plastic = 0;  // points that returned to the yield surface (for the bench's flop count)
 };
 
 StressHealth update_stress(const Model& md, State& st);

@@ -102,6 +102,7 @@ J2Update j2_update(const Eigen::Matrix3d& F, const J2Params& p, double cp_inv[6]
     s *= scale;
     dev *= scale;
     ep += dgamma;
+    out.plastic = true;
     out.dissipation = p.yield(ep) * dgamma;
     // C_p^{-1} = F^{-1} b_e F^{-T} with the returned b_e = exp(2 eps_e)
     const Mat3 be_new = returned_be(ls, be, dev + vol / 3 * Mat3::Identity(), deps_p);

@@ -43,6 +43,7 @@ struct J2Update {
   Eigen::Matrix3d tau;    // Kirchhoff stress (Pa)
   double psi = 0;         // stored elastic energy per reference volume (J/m^3)
   double dissipation = 0; // plastic work of this increment per reference volume (J/m^3)
+  bool plastic = false;   // the trial state was outside the yield surface (a return was made)
 };
 
 // Voigt order of the stored symmetric C_p^{-1}: xx, yy, zz, xy, yz, zx.

@@ -32,3 +32,5 @@ for ext in ("step", "brep"):
         last = meshio.read(sorted((case / "vtk").glob("frame_*.vtu"))[-1])
         rkcase.check(np.isfinite(last.points).all() and last.point_data["velocity"][:, 2].min() < 0,
                      "step: the box solves (falling at 5 m/s)")
+        plastic = json.loads((case / "solve.json").read_text())["plastic_fraction"]
+        rkcase.check(plastic == 0, f"step: an elastic scene makes no plastic return (share {plastic})")

@@ -45,7 +45,14 @@ report = (case / "report.md").read_text()
 rkcase.check(f"{prep['particles']} / {prep['cells']}" in report and "energy balance" in report, "report.md holds the key numbers")
 
 rows = list(csv.DictReader(open(case / "history.csv")))
-ke0 = json.loads((case / "solve.json").read_text())["initial_kinetic_energy"]
+solve = json.loads((case / "solve.json").read_text())
+ke0 = solve["initial_kinetic_energy"]
+# the figures the bench builds on (issue 7): plastic share of the stress updates, neighbours, memory
+rkcase.check(0 < solve["plastic_fraction"] < 1, f"plastic share of the updates {solve['plastic_fraction']:.3f} in (0, 1)")
+rkcase.check(20 < solve["neighbours_per_point"] < 80, f"neighbours per point {solve['neighbours_per_point']:.1f}")
+rkcase.check(0 < solve["resident_bytes_per_point"] <= solve["peak_bytes_per_point"] < 1e5,
+             f"bytes per point resident {solve['resident_bytes_per_point']:.0f} <= peak {solve['peak_bytes_per_point']:.0f}")
+rkcase.check(solve["peak_memory_mb_max_rank"] > 0 and prep["peak_memory_mb"] > 0, "peak memory of rksolve and rkprep reported")
 err = max(float(r["energy_error"]) for r in rows)
 if a.stage == "checkpoint":
     r = m["footprint_radius_mm"]

@@ -19,3 +19,11 @@ p = tools.solve(case, 1, sets=["discretization.dilation=3"], expect_ok=False)
 rkcase.check(p.returncode != 0 and "re-run rkprep" in p.stderr, "rksolve refuses a prep-side --set")
 p = tools.solve(case, 1, sets=["time.cfl=abc"], expect_ok=False)
 rkcase.check(p.returncode != 0 and "'time.cfl' must be a number" in p.stderr, "rksolve: bad --set value")
+
+# the bench's machine probe: one JSON object of positive rates, and a clear error on bad use
+p = tools.run([tools.bin / "rkmachine", "--seconds", "0.02"])
+m = __import__("json").loads(p.stdout)
+rates = list(m["triad_gb_per_s"].values()) + [m["gflop_per_s_this_build"]]
+rkcase.check(len(rates) == 5 and all(r > 0 for r in rates), f"rkmachine: bandwidths and peak {rates}")
+p = tools.run([tools.bin / "rkmachine", "--bogus"], expect_ok=False)
+rkcase.check(p.returncode == 2 and "unknown argument '--bogus'" in p.stderr, "rkmachine: bad argument")
