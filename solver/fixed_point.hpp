@@ -18,7 +18,8 @@ struct FixedScale {
     const int e = std::ilogb(bound) + 1;  // bound < 2^e
     return {std::ldexp(1.0, 61 - e), std::ldexp(1.0, e - 61)};
   }
-  int128 fixed(double x) const { return int128(std::int64_t(x * to_fixed)); }
+  int128 fixed(double x) const { return truncate(x * to_fixed); }
+  static int128 truncate(double scaled) { return int128(std::int64_t(scaled)); }  // scaled = x * to_fixed
   double real(int128 a) const { return double(a) * to_double; }
 };
 

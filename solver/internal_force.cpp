@@ -8,12 +8,13 @@ void clear_internal_force(State& st) { std::fill(st.partial.begin(), st.partial.
 
 void add_internal_force(const Model& md, State& st, const FixedScale& scale, std::span<const std::int32_t> points) {
   for (const std::int32_t g : points) {
-    const double w = md.weight[g];
+    // w times the fixed-point scale, a power of two: ws x rounds exactly as scale.fixed(w x) does
+    const double ws = md.weight[g] * scale.to_fixed;
     const double* P = &st.P[9 * std::size_t(g)];
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
       const double* d = &md.dN[3 * std::size_t(k)];
       int128* f = &st.partial[3 * std::size_t(md.nbr[k])];
-      for (int i = 0; i < 3; ++i) f[i] += scale.fixed(w * (P[3 * i] * d[0] + P[3 * i + 1] * d[1] + P[3 * i + 2] * d[2]));
+      for (int i = 0; i < 3; ++i) f[i] += FixedScale::truncate(ws * (P[3 * i] * d[0] + P[3 * i + 1] * d[1] + P[3 * i + 2] * d[2]));
     }
   }
 }
