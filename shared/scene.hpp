@@ -111,7 +111,7 @@ struct Scene {
 
   struct Time {
     double end = 0;                // s
-    double cfl = 0.5;              // fraction of the stable step
+    double cfl = 0.9;              // fraction of the stable step (default 0.5 when the scene has dies)
     double output_interval = 0;    // s
     double mass_scaling_dt = 0;    // s; > 0: density scaled so that the stable step is at least this
   } time;

@@ -36,9 +36,11 @@ def last_frame(case):
     return len(frames), {"x": m.points[order], **{k: m.point_data[k][order] for k in ("velocity", "eq_plastic_strain")}}
 
 
-# (1) accuracy against the total-Lagrangian run, at the seed's resolution (0.9 mm, 1369 particles)
-tl_case, tl = run("tl", 2, [], spacing=[])
-up_case, up = run("updated", 2, [updates], spacing=[])
+# (1) accuracy against the total-Lagrangian run, at the seed's resolution (0.9 mm, 1369 particles),
+# at CFL 0.5, where the bounds were measured; at the default 0.9 the updates smooth away more of the
+# kinetic energy (10.3 % against 6.3 %; r_f -5.0 %, L_f +1.8 %), README "Reference-configuration updates"
+tl_case, tl = run("tl", 2, ["time.cfl=0.5"], spacing=[])
+up_case, up = run("updated", 2, [updates, "time.cfl=0.5"], spacing=[])
 a, b = taylor_metrics.metrics(tl_case), taylor_metrics.metrics(up_case)
 for key, tol in (("footprint_radius_mm", 0.08), ("final_length_mm", 0.02)):
     rel = b[key] / a[key] - 1

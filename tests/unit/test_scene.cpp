@@ -54,9 +54,15 @@ TEST(Scene, GoodSceneResolvesDefaults) {
   EXPECT_DOUBLE_EQ(s.discretization.dilation, 2.0);
   EXPECT_EQ(s.discretization.gauss_order, 2);
   EXPECT_DOUBLE_EQ(s.time.output_interval, 1e-7);
-  EXPECT_NE(s.resolved_yaml.find("cfl: 0.5"), std::string::npos);
+  EXPECT_NE(s.resolved_yaml.find("cfl: 0.9"), std::string::npos);  // no dies: the measured default
   EXPECT_TRUE(fs::path(s.geometry.cad).is_absolute());
   EXPECT_EQ(s.prep_hash.size(), 16u);
+}
+
+TEST(Scene, DiesKeepTheSmallerDefaultStep) {  // their penalty stiffness is tied to the step
+  const rk::Scene s = rk::load_scene(std::string(RK_SOURCE_DIR) + "/geometry/upsetting/scene.yaml");
+  ASSERT_FALSE(s.dies.empty());
+  EXPECT_DOUBLE_EQ(s.time.cfl, 0.5);
 }
 
 TEST(Scene, UnknownKey) {
