@@ -9,6 +9,7 @@
 #include "cli.hpp"
 #include "die_surface.hpp"
 #include "discretize.hpp"
+#include "jitter.hpp"
 #include "partition.hpp"
 #include "process_memory.hpp"
 #include "scene.hpp"
@@ -90,8 +91,10 @@ int run(int argc, char** argv) {
     return out;
   });
   const auto cell_rank = timer.run("partition", [&] { return rk::partition_cells(mesh, disc, ranks, partitioner); });
+  // the particles: the mesh nodes, moved when the scene asks for an irregular layout (the points stay)
+  const rk::VolumeMesh particles = rk::jitter_interior(mesh, disc.spacing, scene.discretization.jitter);
   const auto subs = timer.run("subdomains", [&] {
-    return rk::build_subdomains({mesh, disc, cell_rank, ranks, scene.discretization.dilation, scene.prep_hash, dies});
+    return rk::build_subdomains({particles, disc, cell_rank, ranks, scene.discretization.dilation, scene.prep_hash, dies});
   });
   const auto report = rk::partition_report(subs, mesh.node_count());
   timer.run("write", [&] {

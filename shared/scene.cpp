@@ -316,6 +316,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     o.gauss_order = d.integer("gauss_order", o.gauss_order, 1, 3);
     o.volumetric = d.text("volumetric", o.volumetric, {"fbar", "none"});
     o.ebc_method = d.text("ebc_method", o.ebc_method, {"nodal", "transformation"});
+    o.jitter = d.number("jitter", o.jitter, {0, 0.5, false, true});
     d.done();
   }
   {

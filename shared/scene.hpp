@@ -80,6 +80,7 @@ struct Scene {
     int gauss_order = 2;      // Gauss points per direction in each cell
     std::string volumetric = "fbar";  // fbar (cell-averaged dilatation) or none
     std::string ebc_method = "nodal"; // essential BCs: nodal (on the coefficients) or transformation (exact)
+    double jitter = 0;        // interior particles moved randomly by up to this x spacing per axis
   } discretization;
 
   Material material;

@@ -41,6 +41,7 @@ TAYLOR = "taylor_bar/scene.yaml"  # scenes under geometry/
 TAYLOR_ELASTIC = "taylor_bar/scene_elastic.yaml"
 UPSET = "upsetting/scene.yaml"
 UPSET_FRICTION = "upsetting/scene_friction.yaml"
+THIN_WALL = "thin_wall/scene.yaml"
 # converged finite-element values at 80 us (BENCHMARKS.md case 1): the reference for the errors
 TAYLOR_REF = {"footprint_radius_mm": 7.22, "final_length_mm": 21.45}
 SEED_SPEEDUP = {2: 1.81, 4: 3.21, 8: 6.41, 16: 10.39, 32: 24.14}  # seed, Taylor bar (BENCHMARKS.md 6)
@@ -111,16 +112,22 @@ def tradeoffs():
 
 def stability():
     h, end = (1.6, 10) if SMOKE else (1.2, 40)
-    knobs = [("cfl 1.0", [], ["time.cfl=1.0"]), ("cfl 2.0", [], ["time.cfl=2.0"])] if SMOKE else [
+    knobs = [("jitter 0.4", ["discretization.jitter=0.4"], []), ("cfl 2.0", [], ["time.cfl=2.0"])] if SMOKE else [
         *[(f"cfl {c}", [], [f"time.cfl={c}"]) for c in (0.9, 1.0, 1.2, 1.5, 2.0)],
         *[(f"dilation {a}", [f"discretization.dilation={a}"], []) for a in (1.5, 1.2, 1.0)],
+        *[(f"jitter {j}", [f"discretization.jitter={j}"], []) for j in (0.1, 0.2, 0.4)],
         *[(f"nu {nu}", [], [f"material.poisson_ratio={nu}"]) for nu in (0.45, 0.49, 0.499)],
         *[(f"{v} m/s", [], [f"initial_conditions.velocity=[0,0,-{v}]"]) for v in (10, 100, 500, 1000)],
         (f"elastic {DRIFT_END:g} s", [], ["initial_conditions.velocity=[1,0,0]", f"time.end={DRIFT_END}",
                                    "time.output_interval=1e-2", "output.checkpoint_steps=0"])]
-    return [Case("taylor_" + k.replace(" ", "_").replace("/", ""),
-                 **taylor(h, end, *s, prep=p, scene=TAYLOR_ELASTIC if "elastic" in k else TAYLOR), label=k)
-            for k, p, s in knobs]
+    cases = [Case("taylor_" + k.replace(" ", "_").replace("/", ""),
+                  **taylor(h, end, *s, prep=p, scene=TAYLOR_ELASTIC if "elastic" in k else TAYLOR), label=k)
+             for k, p, s in knobs]
+    if not SMOKE:  # a thin feature: the wall's 1.2 mm thickness with 2 particles across, and with 3
+        for across, h_wall in ((2, 1.2), (3, 0.6)):
+            cases.append(Case(f"thin_wall_{across}_across", scene=THIN_WALL, prep=[f"discretization.spacing={h_wall}e-3"],
+                              solve=["time.end=40e-6", "time.output_interval=10e-6"], label=f"thin wall, {across} across"))
+    return cases
 
 
 def features():
@@ -256,6 +263,9 @@ def solve(name):
                 m = taylor_metrics.metrics(out)
                 result.update(m)
                 result["error"] = sum(abs(m[k] / v - 1) for k, v in TAYLOR_REF.items())
+            elif c.scene == THIN_WALL:  # no reference: whether it holds together, its height, its strain
+                m = taylor_metrics.metrics(out)
+                result.update({k: m[k] for k in ("finite", "final_length_mm", "max_eq_plastic_strain")})
             else:
                 u = upsetting_check.check(out)
                 result["force_errors"] = {f"{100 * f['reduction']:.0f}%": f["error"] for f in u["force"]}
