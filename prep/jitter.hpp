@@ -10,7 +10,7 @@
 
 namespace rk {
 
-// Returns mesh with its interior nodes moved; fraction 0 returns it unchanged.
-VolumeMesh jitter_interior(VolumeMesh mesh, const std::vector<double>& spacing, double fraction);
+// Moves the interior nodes of mesh in place; fraction 0 leaves it unchanged.
+void jitter_interior(VolumeMesh& mesh, const std::vector<double>& spacing, double fraction);
 
 }  // namespace rk

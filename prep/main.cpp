@@ -77,7 +77,7 @@ int run(int argc, char** argv) {
   PhaseTimer timer(quiet);
   auto t0 = std::chrono::steady_clock::now();
   const rk::Scene scene = rk::load_scene(scene_file, rk::parse_overrides(sets), rk::Side::prep);
-  const rk::VolumeMesh mesh = timer.run("mesh", [&] {
+  rk::VolumeMesh mesh = timer.run("mesh", [&] {
     return rk::mesh_cad({scene.geometry.cad, scene.geometry.unit, scene.discretization.spacing});
   });
   const rk::Discretization disc =
@@ -91,10 +91,11 @@ int run(int argc, char** argv) {
     return out;
   });
   const auto cell_rank = timer.run("partition", [&] { return rk::partition_cells(mesh, disc, ranks, partitioner); });
-  // the particles: the mesh nodes, moved when the scene asks for an irregular layout (the points stay)
-  const rk::VolumeMesh particles = rk::jitter_interior(mesh, disc.spacing, scene.discretization.jitter);
+  // the particles are the mesh nodes, moved when the scene asks for an irregular layout (after the
+  // integration points and volumes were taken from the mesh, so those stay)
+  rk::jitter_interior(mesh, disc.spacing, scene.discretization.jitter);
   const auto subs = timer.run("subdomains", [&] {
-    return rk::build_subdomains({particles, disc, cell_rank, ranks, scene.discretization.dilation, scene.prep_hash, dies});
+    return rk::build_subdomains({mesh, disc, cell_rank, ranks, scene.discretization.dilation, scene.prep_hash, dies});
   });
   const auto report = rk::partition_report(subs, mesh.node_count());
   timer.run("write", [&] {

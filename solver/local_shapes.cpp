@@ -19,12 +19,6 @@ LocalShapes::LocalShapes(const std::vector<double>& X, const std::vector<double>
       kernel_(parse_kernel(scene.discretization.kernel)),
       basis_(parse_basis(scene.discretization.basis)) {}
 
-std::size_t LocalShapes::count(const double x[3]) const {
-  found_.clear();
-  grid_.covering(x, found_);
-  return found_.size();
-}
-
 RkResult LocalShapes::append(const double x[3], std::vector<std::int32_t>& cols, std::vector<double>& N,
                              std::vector<double>& dN) const {
   found_.clear();

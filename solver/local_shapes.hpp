@@ -16,9 +16,6 @@ class LocalShapes {
   LocalShapes(const std::vector<double>& X, const std::vector<double>& volume, const std::vector<double>& spacing,
               const Scene& scene);
 
-  // The number of particles whose supports cover x (what append adds), to size the arrays first.
-  std::size_t count(const double x[3]) const;
-
   // Appends the particles whose supports cover x (ascending local index) to `cols`, and their N
   // and grad N (3 per column) to `N` and `dN`. The caller reports a singular moment matrix.
   RkResult append(const double x[3], std::vector<std::int32_t>& cols, std::vector<double>& N,

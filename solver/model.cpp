@@ -16,12 +16,6 @@ void build_shape_functions(Model& md, const Subdomain& sub, const Scene& scene) 
   const LocalShapes shapes(md.Xr, sub.volume, md.spacing, scene);
   md.nbr_offsets.assign(1, 0);
   md.dN_max.resize(md.m);
-  std::size_t columns = 0;  // sized exactly first: grown by doubling they would peak at ~2x (heaptrack)
-  for (std::size_t g = 0; g < md.m; ++g) columns += shapes.count(&md.point_X[3 * g]);
-  md.nbr.reserve(columns);
-  md.N.reserve(columns);
-  md.dN.reserve(3 * columns);
-  md.nbr_offsets.reserve(md.m + 1);
   for (std::size_t g = 0; g < md.m; ++g) {
     const std::size_t k0 = md.nbr.size();
     const RkResult r = shapes.append(&md.point_X[3 * g], md.nbr, md.N, md.dN);  // ascending global id
