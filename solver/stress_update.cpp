@@ -1,45 +1,88 @@
 #include "stress_update.hpp"
 
-#include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 
 #include "material/j2_plasticity.hpp"
 
 namespace rk {
+namespace {
+
+// The points g .. g+n of one cell, kLanes at a time (the rest of the lanes at rest).
+void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n, J2Batch& b) {
+  for (int l = 0; l < kLanes; ++l) {
+    if (l >= n) {
+      b.at_rest(l);
+      continue;
+    }
+    const std::size_t p = g + l;
+    const double ratio = md.fbar ? std::cbrt(st.cell_J[c] / st.J[p]) : 1.0;
+    for (int i = 0; i < 9; ++i) b.F.v[i][l] = ratio * st.F[9 * p + i];
+    for (int i = 0; i < 6; ++i) b.cp_inv.v[i][l] = st.cp_inv[6 * p + i];
+    b.ep[l] = st.ep[p];
+  }
+}
+
+// P = tau_eff F^{-T} = tau_eff cof(F) / det F for the points g .. g+n, and their force bounds.
+void first_piola(const Model& md, State& st, std::size_t g, int n, double pc) {
+  Mat F{}, cof;
+  Sym te;
+  for (int l = 0; l < kLanes; ++l)
+    for (int i = 0; i < 9; ++i) F.v[i][l] = l < n ? st.F[9 * (g + l) + i] : (i % 4 == 0);
+  for (int l = 0; l < kLanes; ++l) {
+    const double* t = &st.tau[6 * (g + std::min(l, n - 1))];
+    const double shift = md.fbar ? st.total_J(g + std::min(l, n - 1)) * pc - (t[0] + t[1] + t[2]) / 3 : 0.0;
+    for (int i = 0; i < 6; ++i) te.v[i][l] = t[i] + (i < 3 ? shift : 0.0);
+  }
+  const Lane inv_det = 1 / cofactor(F, cof);
+  const Lane* s = te.v;
+  const Lane full[9] = {s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2]};
+  Lane P[9], norm2{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      P[3 * i + j] = (full[3 * i] * cof.v[j] + full[3 * i + 1] * cof.v[3 + j] + full[3 * i + 2] * cof.v[6 + j]) * inv_det;
+      norm2 += P[3 * i + j] * P[3 * i + j];
+    }
+  for (int l = 0; l < n; ++l) {
+    for (int i = 0; i < 9; ++i) st.P[9 * (g + l) + i] = P[i][l];
+    st.force_bound[g + l] = md.weight[g + l] * std::sqrt(norm2[l]) * md.dN_max[g + l];
+  }
+}
+
+}  // namespace
 
 StressHealth update_stress(const Model& md, State& st) {
   StressHealth health;
+  J2Batch b;
   for (std::size_t c = 0; c < md.cells; ++c) {
-    double wp = 0, wJ = 0;
-    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
+    const std::size_t g0 = md.cell_points[c], g1 = md.cell_points[c + 1];
+    bool cell_ok = true;
+    for (auto g = g0; g < g1; ++g)
       if (!(st.J[g] > 0) || !std::isfinite(st.J[g])) {
-        if (health.ok) health = {false, std::size_t(g), st.J[g]};
-        continue;
+        if (health.ok) health = {false, g, st.J[g]};
+        cell_ok = false;
       }
-      const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> F(&st.F[9 * g]);
-      const double ratio = md.fbar ? std::cbrt(st.cell_J[c] / st.J[g]) : 1.0;
-      const J2Update up = j2_update(ratio * F, md.material, &st.cp_inv[6 * g], st.ep[g]);
-      double* t = &st.tau[6 * g];
-      t[0] = up.tau(0, 0), t[1] = up.tau(1, 1), t[2] = up.tau(2, 2), t[3] = up.tau(0, 1), t[4] = up.tau(1, 2),
-      t[5] = up.tau(2, 0);
-      st.psi[g] = up.psi;
-      st.wp[g] += up.dissipation;
-      health.plastic += up.plastic;
-      wp += md.weight[g] * (t[0] + t[1] + t[2]) / 3;
-      wJ += md.weight[g] * st.total_J(g);
+    if (!cell_ok) continue;
+    double wp = 0, wJ = 0;
+    for (auto g = g0; g < g1; g += kLanes) {
+      const int n = int(std::min<std::size_t>(kLanes, g1 - g));
+      load(md, st, c, g, n, b);
+      j2_update(md.material, b);
+      for (int l = 0; l < n; ++l) {
+        const std::size_t p = g + l;
+        double* t = &st.tau[6 * p];
+        for (int i = 0; i < 6; ++i) t[i] = b.tau.v[i][l], st.cp_inv[6 * p + i] = b.cp_inv.v[i][l];
+        st.ep[p] = b.ep[l];
+        st.psi[p] = b.psi[l];
+        st.wp[p] += b.dissipation[l];
+        health.plastic += b.plastic[l] != 0;
+        wp += md.weight[p] * (t[0] + t[1] + t[2]) / 3;
+        wJ += md.weight[p] * st.total_J(p);
+      }
     }
     if (!health.ok) continue;
     const double pc = md.fbar ? wp / wJ : 0.0;
-    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
-      const double* t = &st.tau[6 * g];
-      Eigen::Matrix3d te;
-      te << t[0], t[3], t[5], t[3], t[1], t[4], t[5], t[4], t[2];
-      if (md.fbar) te.diagonal().array() += st.total_J(g) * pc - te.trace() / 3;
-      const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> F(&st.F[9 * g]);
-      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> P(&st.P[9 * g]);
-      P = te * F.inverse().transpose();
-      st.force_bound[g] = md.weight[g] * P.norm() * md.dN_max[g];
-    }
+    for (auto g = g0; g < g1; g += kLanes) first_piola(md, st, g, int(std::min<std::size_t>(kLanes, g1 - g)), pc);
   }
   return health;
 }

@@ -4,9 +4,12 @@
 // construction) and the equivalent plastic strain ep. Isotropic hardening, linear
 // sigma_y = sigma_y0 + H ep or power law sigma_y = K (eps0 + ep)^n (seed Table 4);
 // `plastic = false` gives the Hencky hyperelastic special case.
+// The update runs kLanes integration points at once (lanes.hpp); j2_update(F, ...) is one point.
 #pragma once
 #include <Eigen/Dense>
 #include <cmath>
+
+#include "material/lanes.hpp"
 
 namespace rk {
 
@@ -39,15 +42,29 @@ struct J2Params {
   }
 };
 
-struct J2Update {
-  Eigen::Matrix3d tau;    // Kirchhoff stress (Pa)
-  double psi = 0;         // stored elastic energy per reference volume (J/m^3)
-  double dissipation = 0; // plastic work of this increment per reference volume (J/m^3)
-  bool plastic = false;   // the trial state was outside the yield surface (a return was made)
+// kLanes points: F (with F-bar applied), C_p^{-1} (Voigt xx, yy, zz, xy, yz, zx) and ep in; the
+// updated C_p^{-1} and ep, the Kirchhoff stress and the energies out. Every F must have det F > 0;
+// a lane not in use holds F = I, C_p^{-1} = I (at_rest).
+struct J2Batch {
+  Mat F;
+  Sym cp_inv;
+  Lane ep;
+  Sym tau;            // Kirchhoff stress (Pa)
+  Lane psi;           // stored elastic energy per reference volume (J/m^3)
+  Lane dissipation;   // plastic work of this increment per reference volume (J/m^3)
+  LaneMask plastic;   // the trial state was outside the yield surface (a return was made)
+  void at_rest(int lane);
 };
 
-// Voigt order of the stored symmetric C_p^{-1}: xx, yy, zz, xy, yz, zx.
-// Updates cp_inv and ep in place. F must have det F > 0.
+void j2_update(const J2Params& p, J2Batch& b);
+
+struct J2Update {
+  Eigen::Matrix3d tau;
+  double psi = 0, dissipation = 0;
+  bool plastic = false;
+};
+
+// One point (tests, tools): updates cp_inv and ep in place. F must have det F > 0.
 J2Update j2_update(const Eigen::Matrix3d& F, const J2Params& p, double cp_inv[6], double& ep);
 
 }  // namespace rk

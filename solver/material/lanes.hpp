@@ -1,0 +1,100 @@
+// Several integration points at once: a Lane holds one double per point (GCC/Clang vector extension,
+// compiled to SSE2 pairs here and to wider registers where the target has them), so the 3x3 algebra
+// of the stress update runs kLanes points per instruction stream. Each lane computes exactly what it
+// would alone: no result depends on which other points share its batch (rank independence).
+// Symmetric tensors in Voigt order xx, yy, zz, xy, yz, zx; full tensors row-major.
+#pragma once
+
+namespace rk {
+
+constexpr int kLanes = 2;
+using Lane = double __attribute__((vector_size(8 * kLanes)));
+using LaneMask = long long __attribute__((vector_size(8 * kLanes)));  // -1 true, 0 false
+
+inline Lane splat(double x) { return Lane{} + x; }
+// m ? a : b lane by lane, as a bitwise blend (casts between vectors of one size keep the bits;
+// the vector ?: compiles to per-element branches without AVX)
+inline Lane select(LaneMask m, Lane a, Lane b) { return (Lane)(((LaneMask)a & m) | ((LaneMask)b & ~m)); }
+inline Lane sqrt(Lane x) {
+  for (int l = 0; l < kLanes; ++l) x[l] = __builtin_sqrt(x[l]);
+  return x;
+}
+inline bool any(LaneMask m) {
+  for (int l = 0; l < kLanes; ++l)
+    if (m[l]) return true;
+  return false;
+}
+
+struct Sym {  // symmetric 3x3, Voigt order
+  Lane v[6];
+};
+struct Mat {  // 3x3, row-major
+  Lane v[9];
+};
+
+inline Sym identity_sym(Lane diag) {
+  const Lane z{};
+  return {{diag, diag, diag, z, z, z}};
+}
+inline Sym operator*(Lane s, const Sym& a) {
+  Sym r;
+  for (int i = 0; i < 6; ++i) r.v[i] = s * a.v[i];
+  return r;
+}
+inline Sym operator+(const Sym& a, const Sym& b) {
+  Sym r;
+  for (int i = 0; i < 6; ++i) r.v[i] = a.v[i] + b.v[i];
+  return r;
+}
+inline Sym select(LaneMask m, const Sym& a, const Sym& b) {
+  Sym r;
+  for (int i = 0; i < 6; ++i) r.v[i] = select(m, a.v[i], b.v[i]);
+  return r;
+}
+inline Lane trace(const Sym& a) { return a.v[0] + a.v[1] + a.v[2]; }
+inline Lane norm2(const Sym& a) {  // Frobenius, squared
+  return a.v[0] * a.v[0] + a.v[1] * a.v[1] + a.v[2] * a.v[2] +
+         2 * (a.v[3] * a.v[3] + a.v[4] * a.v[4] + a.v[5] * a.v[5]);
+}
+
+// A B for COMMUTING symmetric A, B (polynomials in the same tensor): the product is symmetric.
+inline Sym commuting_product(const Sym& A, const Sym& B) {
+  const Lane *a = A.v, *b = B.v;
+  return {{a[0] * b[0] + a[3] * b[3] + a[5] * b[5], a[3] * b[3] + a[1] * b[1] + a[4] * b[4],
+           a[5] * b[5] + a[4] * b[4] + a[2] * b[2], a[0] * b[3] + a[3] * b[1] + a[5] * b[4],
+           a[3] * b[5] + a[1] * b[4] + a[4] * b[2], a[5] * b[0] + a[4] * b[3] + a[2] * b[5]}};
+}
+
+inline Sym inverse(const Sym& A) {  // adjugate / det
+  const Lane* a = A.v;
+  const Lane c0 = a[1] * a[2] - a[4] * a[4], c3 = a[4] * a[5] - a[3] * a[2], c5 = a[3] * a[4] - a[1] * a[5];
+  const Lane inv = 1 / (a[0] * c0 + a[3] * c3 + a[5] * c5);
+  return {{c0 * inv, (a[0] * a[2] - a[5] * a[5]) * inv, (a[0] * a[1] - a[3] * a[3]) * inv, c3 * inv,
+           (a[3] * a[5] - a[0] * a[4]) * inv, c5 * inv}};
+}
+
+// F S F^T (transpose = false) or F^T S F (transpose = true)
+inline Sym congruence(const Mat& F, const Sym& S, bool transpose) {
+  const Lane* s = S.v;
+  const Lane full[9] = {s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2]};
+  auto f = [&](int i, int j) { return transpose ? F.v[3 * j + i] : F.v[3 * i + j]; };
+  Lane A[9];  // f S
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) A[3 * i + j] = f(i, 0) * full[j] + f(i, 1) * full[3 + j] + f(i, 2) * full[6 + j];
+  auto c = [&](int i, int j) { return A[3 * i] * f(j, 0) + A[3 * i + 1] * f(j, 1) + A[3 * i + 2] * f(j, 2); };
+  return {{c(0, 0), c(1, 1), c(2, 2), c(0, 1), c(1, 2), c(2, 0)}};
+}
+
+// Cofactor matrix of F (F^{-T} = cof F / det F); returns det F.
+inline Lane cofactor(const Mat& F, Mat& cof) {
+  const Lane* f = F.v;
+  for (int r = 0; r < 3; ++r) {  // row r = row (r+1) x row (r+2)
+    const Lane *a = f + 3 * ((r + 1) % 3), *b = f + 3 * ((r + 2) % 3);
+    cof.v[3 * r] = a[1] * b[2] - a[2] * b[1];
+    cof.v[3 * r + 1] = a[2] * b[0] - a[0] * b[2];
+    cof.v[3 * r + 2] = a[0] * b[1] - a[1] * b[0];
+  }
+  return f[0] * cof.v[0] + f[1] * cof.v[1] + f[2] * cof.v[2];
+}
+
+}  // namespace rk
