@@ -55,9 +55,9 @@ def update_cost(neighbours, plastic_fraction):
     (docs/performance.md has the tally). Per neighbour: kinematics 9 multiply-adds (18 flops) and
     the scatter 21 flops, reading the column index and grad N (28 bytes) in each of the two loops;
     the particle data they gather and scatter stays in cache. Per point: the elastic stress update
-    (trial b_e, log by series, F-bar, P = tau F^-T: about 736 flops), the return map of a plastic
-    point (about 594 more), and 584 bytes of point state read and written."""
-    return {"bytes": 56 * neighbours + 584, "flops": 39 * neighbours + 736 + 594 * plastic_fraction}
+    (trial b_e, log by series in symmetric products, F-bar, P = tau cof F / det F: about 580 flops),
+    the return map of a plastic point (about 430 more), and 584 bytes of point state read and written."""
+    return {"bytes": 56 * neighbours + 584, "flops": 39 * neighbours + 580 + 430 * plastic_fraction}
 
 
 def machine_limit(machine, cost, points):

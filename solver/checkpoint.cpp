@@ -1,5 +1,6 @@
 #include "checkpoint.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -75,11 +76,41 @@ void write_checkpoint(const std::string& case_dir, const Model& md, const State&
     std::filesystem::remove(tmp, ignored);
     throw;
   }
-  commit_file(tmp, path);  // fsync, rename over the last good one, fsync the folder
+  // the last good one becomes the previous (a kill between the renames leaves the previous and
+  // the complete temporary file: the restart falls back to the previous on every rank)
+  if (std::filesystem::exists(path) && std::rename(path.c_str(), (path + ".previous").c_str()) != 0)
+    throw Error(path + ": cannot keep the previous checkpoint (rename failed)");
+  commit_file(tmp, path);  // fsync, rename, fsync the folder
 }
 
-void read_checkpoint(const std::string& case_dir, Model& md, State& st, RunClock& c, std::vector<DieTotals>& dies) {
-  const std::string path = checkpoint_path(case_dir, md.rank);
+namespace {
+
+std::int64_t checkpoint_step(const std::string& path) {  // -1: absent or unreadable
+  if (!std::filesystem::exists(path)) return -1;
+  try {
+    const auto i = H5File(path, H5File::Mode::read).read<std::int64_t>("clock/integers");
+    return i.size() == 3 ? i[0] : -1;
+  } catch (const Error&) {
+    return -1;
+  }
+}
+
+}  // namespace
+
+std::string restart_checkpoint(const std::string& case_dir, const Comm& comm) {
+  const std::string newest = checkpoint_path(case_dir, comm.rank()), previous = newest + ".previous";
+  const std::int64_t mine[2] = {checkpoint_step(newest), checkpoint_step(previous)};
+  double step = double(std::max(mine[0], mine[1]));
+  comm.min(&step, 1);
+  comm.check(step >= 0, case_dir + "/checkpoint: no complete checkpoint of every rank to restart from "
+                                   "(run without --restart)");
+  const bool held = mine[0] == std::int64_t(step) || mine[1] == std::int64_t(step);
+  comm.check(held, newest + ": this rank holds no checkpoint of step " + std::to_string(std::int64_t(step)) +
+                       ", the newest every other rank holds (run without --restart)");
+  return mine[0] == std::int64_t(step) ? newest : previous;
+}
+
+void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c, std::vector<DieTotals>& dies) {
   H5File f(path, H5File::Mode::read);
   const std::int64_t updates = f.exists("particles/global_id") ? f.attr_int("reference_updates") : 0;
   if ((updates == 0 && f.attr_int("particles") != std::int64_t(md.n)) || f.attr_int("points") != std::int64_t(md.m))

@@ -1,11 +1,15 @@
 // Checkpoint and restart: each rank writes the STATE it needs to continue (never the offline data:
 // neighbours and shape functions are rebuilt from the subdomain file) to CASE/checkpoint/rank_NNNN.h5,
 // atomically (temporary name, fsync, rename), so a crash leaves the previous good checkpoint. A
-// restarted run continues bitwise as the uninterrupted run would have.
+// restarted run continues bitwise as the uninterrupted run would have. Each rank keeps its newest
+// checkpoint and the one before (rank_NNNN.h5.previous): a job killed while its ranks were writing
+// can leave one rank a checkpoint behind the others, and the restart takes the newest step that
+// every rank holds.
 #pragma once
 #include <string>
 #include <vector>
 
+#include "comm.hpp"
 #include "contact/die_contact.hpp"
 #include "model.hpp"
 #include "state.hpp"
@@ -20,12 +24,16 @@ struct RunClock {
 
 std::string checkpoint_path(const std::string& case_dir, int rank);
 
+// Collective: the file this rank restarts from, the newest checkpoint step held by every rank.
+// One clear error on every rank when there is none.
+std::string restart_checkpoint(const std::string& case_dir, const Comm& comm);
+
 void write_checkpoint(const std::string& case_dir, const Model& md, const State& st, const RunClock& clock,
                       const std::vector<DieTotals>& dies);
 
-// Reads this rank's checkpoint into st/clock/dies; checks it belongs to this model. After reference
+// Reads a checkpoint of this rank into st/clock/dies; checks it belongs to this model. After reference
 // updates it also sets md.point_X and st.u_ref, J_ref (the caller then rebuilds the model).
-void read_checkpoint(const std::string& case_dir, Model& md, State& st, RunClock& clock,
+void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& clock,
                      std::vector<DieTotals>& dies);
 
 }  // namespace rk

@@ -101,8 +101,10 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   RunClock clock;
   clock.dt_stable = dt0;  // the last unclipped global stable step: sets the penalty stiffness
   clock.kinetic0 = compute_energies(md, st, st.v, comm).kinetic;
-  if (opt.restart)
-    collectively(comm, [&] { return read_checkpoint(opt.case_dir, md, st, clock, dies->totals()), 0; });
+  if (opt.restart) {
+    const std::string path = restart_checkpoint(opt.case_dir, comm);
+    collectively(comm, [&] { return read_checkpoint(path, md, st, clock, dies->totals()), 0; });
+  }
   auto results = collectively(comm, [&] {
     return std::make_unique<ResultWriter>(opt.case_dir, md, opt.restart ? clock.frames : -1);
   });

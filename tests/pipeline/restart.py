@@ -1,8 +1,11 @@
 """Checkpoint and restart lose nothing (issue 8): (1) a run stopped at 4 us and restarted to 8 us
 ends bitwise equal to the uninterrupted run, frames and all; (2) a rank killed with SIGKILL mid-run
 stops the whole job quickly, leaves the last good checkpoint, and the restart from it ends bitwise
-equal to the uninterrupted run."""
+equal to the uninterrupted run; (3) a job killed between its ranks' checkpoint writes (one rank a
+checkpoint behind) restarts from the newest step every rank holds, bitwise; with no checkpoint,
+--restart is one clear error."""
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -72,6 +75,21 @@ rkcase.check(job.returncode != 0, f"a killed rank stops the job (exit {job.retur
 tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", killed, "--quiet", "--restart"] +
           sum((["--set", s] for s in long), []))
 rkcase.check(same(final(whole), final(killed)), "restarted after SIGKILL: final state bitwise equal to the uninterrupted run")
+
+# Killed between the ranks' writes: rank 1's newest checkpoint is the one before rank 0's.
+behind = copy("kill_behind")
+tools.solve(behind, 2, sets=["time.end=8e-6"] + long[1:])
+ck = behind / "checkpoint"
+steps = {p.name: int(re.search(r"\(0,0\):\s*(\d+)", tools.run(["h5dump", "-d", "clock/integers", p]).stdout)[1])
+         for p in sorted(ck.glob("rank_*"))}  # the step of each file
+os.replace(ck / "rank_0001.h5.previous", ck / "rank_0001.h5")
+tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", behind, "--quiet", "--restart"] + sum((["--set", s] for s in long), []))
+rkcase.check(same(final(whole), final(behind)),
+             f"rank 1 a checkpoint behind (steps {steps}): restarted from the older step, bitwise equal")
+empty = copy("restart_nothing")
+p = tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", empty, "--quiet", "--restart"], expect_ok=False, timeout=120)
+rkcase.check(p.returncode != 0 and "no complete checkpoint" in p.stderr and "Traceback" not in p.stderr,
+             f"--restart without a checkpoint: {p.stderr.strip().splitlines()[0] if p.stderr.strip() else p.returncode}")
 
 # Wall-clock checkpoints: with step checkpoints off, a checkpoint still appears while the run goes on.
 clock = copy("clock_checkpoint")
