@@ -1,8 +1,9 @@
 // rkmachine: what one core of this machine can do, for the bench's machine-limit estimate (issue 7).
 // Measures the memory bandwidth (STREAM triad a = b + s c, 24 bytes per element as STREAM counts
 // them) for working sets from cache-sized to DRAM-sized, and the peak double-precision rate of
-// independent multiply-add chains, both as this build compiles them (the project's flags: SSE2,
-// no FMA) and with AVX-512 FMA where the CPU has it (the core's peak). Prints one JSON object.
+// independent multiply-add chains, both as this build compiles them (the project's flags: SSE2, or
+// the machine's vector units with RK_NATIVE; ISO C++ contracts no FMA) and with AVX-512 FMA where
+// the CPU has it (the core's peak). Prints one JSON object.
 //   rkmachine [--seconds S]   (each measurement repeats for about S seconds, best rate kept)
 #include <chrono>
 #include <cstdio>
@@ -47,15 +48,22 @@ double triad_bytes_per_s(std::size_t bytes, double seconds) {
 }
 
 // Independent chains x = x * m + c, enough to cover the latency of the vector units (the compiler
-// vectorizes them with what the target allows): 32 for the build's 2-wide SSE2 registers (16),
-// 64 for AVX-512 (8 registers of 8, two FMA pipes of latency 4).
+// vectorizes them with what the target allows): 32 in 16 SSE2 registers, 64 in 16 AVX registers
+// or 8 AVX-512 registers (two pipes of latency 4).
 constexpr int kMaxChains = 64;
 constexpr long kIterations = 1'000'000;
+#if defined(__AVX512F__)
+constexpr int kBuildChains = 64, kBuildVectorBits = 512;
+#elif defined(__AVX__)
+constexpr int kBuildChains = 64, kBuildVectorBits = 256;
+#else
+constexpr int kBuildChains = 32, kBuildVectorBits = 128;
+#endif
 
 double chains_build(double* x, double m, double c) {
   for (long it = 0; it < kIterations; ++it)
-    for (int k = 0; k < 32; ++k) x[k] = x[k] * m + c;
-  return 2.0 * 32 * double(kIterations);
+    for (int k = 0; k < kBuildChains; ++k) x[k] = x[k] * m + c;
+  return 2.0 * kBuildChains * double(kIterations);
 }
 
 __attribute__((target("avx512f,fma"))) double chains_avx512(double* x, double m, double c) {
@@ -91,7 +99,8 @@ int main(int argc, char** argv) {
   const std::size_t sizes_kib[] = {256, 4096, 16384, 1048576};  // L2, L3, L3, DRAM working sets
   for (std::size_t i = 0; i < 4; ++i)
     std::printf("%s\"%zu_kib\": %.2f", i ? ", " : "", sizes_kib[i], 1e-9 * triad_bytes_per_s(sizes_kib[i] << 10, seconds));
-  std::printf("},\n  \"gflop_per_s_this_build\": %.2f", 1e-9 * flops_per_s(seconds, chains_build));
+  std::printf("},\n  \"build_vector_bits\": %d", kBuildVectorBits);
+  std::printf(",\n  \"gflop_per_s_this_build\": %.2f", 1e-9 * flops_per_s(seconds, chains_build));
   __builtin_cpu_init();
   if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("fma"))
     std::printf(",\n  \"gflop_per_s_avx512_fma\": %.2f", 1e-9 * flops_per_s(seconds, chains_avx512));

@@ -25,5 +25,6 @@ p = tools.run([tools.bin / "rkmachine", "--seconds", "0.02"])
 m = __import__("json").loads(p.stdout)
 rates = list(m["triad_gb_per_s"].values()) + [m["gflop_per_s_this_build"]]
 rkcase.check(len(rates) == 5 and all(r > 0 for r in rates), f"rkmachine: bandwidths and peak {rates}")
+rkcase.check(m["build_vector_bits"] in (128, 256, 512), f"rkmachine: the build's vectors are {m['build_vector_bits']} bits")
 p = tools.run([tools.bin / "rkmachine", "--bogus"], expect_ok=False)
 rkcase.check(p.returncode == 2 and "unknown argument '--bogus'" in p.stderr, "rkmachine: bad argument")

@@ -113,3 +113,52 @@ TEST(J2, PowerLawHardeningFollowsTheCurve) {
   // isochoric path: equivalent strain 0.4 = ep + q / (3G)
   EXPECT_NEAR(ep, 0.4 - al.yield(ep) / (3 * al.shear), 1e-9);
 }
+
+// The stress update runs kLanes points at once (lanes.hpp). A point's result must not depend on the
+// points that share its batch (or the answer would depend on the rank count): every lane, in any
+// company, equals the point updated alone, bit for bit. The mix has elastic and plastic points,
+// different series lengths, and one elastic stretch beyond the series' range (spectral path).
+TEST(J2, EachLaneComputesWhatItWouldAlone) {
+  constexpr int kPoints = 11;
+  Eigen::Matrix3d F[kPoints];
+  for (int k = 0; k < kPoints; ++k) {
+    F[k] = Eigen::Matrix3d::Identity();
+    F[k](0, 0) += 0.0004 * k * k;            // elastic for small k, plastic beyond
+    F[k](1, 2) += 0.001 * (k % 3);
+    F[k](2, 0) -= 0.0007 * (k % 4);
+  }
+  F[5] *= 1.2;  // |b_e - I| > 0.1: spectral logarithm
+  double cp0[6] = {1.001, 0.999, 1, 0.0005, 0, -0.0002};
+  double alone_cp[kPoints][6], alone_ep[kPoints];
+  Eigen::Matrix3d alone_tau[kPoints];
+  int plastic = 0;
+  for (int k = 0; k < kPoints; ++k) {
+    std::copy(cp0, cp0 + 6, alone_cp[k]);
+    alone_ep[k] = 0.01;
+    const rk::J2Update up = rk::j2_update(F[k], kCopper, alone_cp[k], alone_ep[k]);
+    alone_tau[k] = up.tau;
+    plastic += up.plastic;
+  }
+  EXPECT_GT(plastic, 0);
+  EXPECT_LT(plastic, kPoints);
+  for (int shift = 0; shift < rk::kLanes; ++shift) {  // every point in every lane, beside others
+    rk::J2Batch b;
+    for (int first = 0; first < kPoints; first += rk::kLanes) {
+      for (int l = 0; l < rk::kLanes; ++l) {
+        const int k = (first + l + shift) % kPoints;
+        for (int i = 0; i < 9; ++i) b.F.v[i][l] = F[k](i / 3, i % 3);
+        for (int i = 0; i < 6; ++i) b.cp_inv.v[i][l] = cp0[i];
+        b.ep[l] = 0.01;
+      }
+      rk::j2_update(kCopper, b);
+      for (int l = 0; l < rk::kLanes; ++l) {
+        const int k = (first + l + shift) % kPoints;
+        EXPECT_EQ(b.plastic[l] != 0, alone_ep[k] > 0.01) << "point " << k << " lane " << l;
+        EXPECT_EQ(b.ep[l], alone_ep[k]) << "point " << k << " in lane " << l;
+        for (int i = 0; i < 6; ++i) EXPECT_EQ(b.cp_inv.v[i][l], alone_cp[k][i]) << "point " << k << " lane " << l;
+        EXPECT_EQ(b.tau.v[0][l], alone_tau[k](0, 0)) << "point " << k << " lane " << l;
+        EXPECT_EQ(b.tau.v[4][l], alone_tau[k](1, 2)) << "point " << k << " lane " << l;
+      }
+    }
+  }
+}
