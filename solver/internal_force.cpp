@@ -2,9 +2,20 @@
 
 #include <algorithm>
 
+#include "overlap_exchange.hpp"
+
 namespace rk {
 
-void clear_internal_force(State& st) { std::fill(st.partial.begin(), st.partial.end(), int128(0)); }
+int force_headroom(const Model& md, int extra, const Comm& comm) {
+  std::vector<Fixed> terms(md.n, 0);
+  for (auto k = md.nbr_offsets.front(); k < md.nbr_offsets.back(); ++k) ++terms[std::size_t(md.nbr[k])];
+  OverlapExchange(md, 1).sum(terms);
+  double most = terms.empty() ? 0.0 : double(*std::max_element(terms.begin(), terms.end()));
+  comm.max(&most, 1);
+  return headroom_bits(std::int64_t(most) + extra);
+}
+
+void clear_internal_force(State& st) { std::fill(st.partial.begin(), st.partial.end(), Fixed(0)); }
 
 void add_internal_force(const Model& md, State& st, const FixedScale& scale, std::span<const std::int32_t> points) {
   for (const std::int32_t g : points) {
@@ -13,7 +24,7 @@ void add_internal_force(const Model& md, State& st, const FixedScale& scale, std
     const double* P = &st.P[9 * std::size_t(g)];
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
       const double* d = &md.dN[3 * std::size_t(k)];
-      int128* f = &st.partial[3 * std::size_t(md.nbr[k])];
+      Fixed* f = &st.partial[3 * std::size_t(md.nbr[k])];
       for (int i = 0; i < 3; ++i) f[i] += FixedScale::truncate(ws * (P[3 * i] * d[0] + P[3 * i + 1] * d[1] + P[3 * i + 2] * d[2]));
     }
   }

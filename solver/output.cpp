@@ -1,5 +1,7 @@
 #include "output.hpp"
 
+#include "internal_force.hpp"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -10,6 +12,7 @@
 #include "durable_file.hpp"
 #include "error.hpp"
 #include "h5file.hpp"
+#include "internal_force.hpp"
 #include "kinematics.hpp"
 
 namespace rk {
@@ -71,8 +74,9 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
   }
   comm.max(bound, kProjected);
   FixedScale scale[kProjected];
-  for (int c = 0; c < kProjected; ++c) scale[c] = FixedScale::for_bound(bound[c]);
-  std::fill(partial_.begin(), partial_.end(), int128(0));
+  if (headroom_ < 0) headroom_ = force_headroom(md, 0, comm);
+  for (int c = 0; c < kProjected; ++c) scale[c] = FixedScale::for_bound(bound[c], headroom_);
+  std::fill(partial_.begin(), partial_.end(), Fixed(0));
   for (std::size_t g = 0; g < md.m; ++g)
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
       for (int c = 0; c < kProjected; ++c)

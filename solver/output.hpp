@@ -29,7 +29,8 @@ class ResultWriter {
   std::string dir_;
   int frames_ = 0;
   OverlapExchange exchange_;
-  std::vector<int128> partial_;
+  std::vector<Fixed> partial_;
+  int headroom_ = -1;  // of the projection sums (force_headroom), set at the first frame
 };
 
 class HistoryWriter {  // rank 0 only: one header row, then one row of numbers per call

@@ -1,6 +1,6 @@
 // Seed section 4.2 (Figs. 3-4): each rank computes partial sums for its local particles from its
 // own integration points; the partials of the particles shared with each neighbour rank are
-// exchanged with non-blocking MPI and added. The partials are 128-bit fixed point
+// exchanged with non-blocking MPI and added. The partials are 64-bit fixed point
 // (fixed_point.hpp), so every copy of a shared particle gets the bitwise same total.
 #pragma once
 #include <mpi.h>
@@ -16,10 +16,10 @@ class OverlapExchange {
  public:
   OverlapExchange(const Model& model, int width);  // width = values per particle
   // Posts the receives, packs and sends this rank's partials of the shared particles.
-  void start(const std::vector<int128>& partial);
+  void start(const std::vector<Fixed>& partial);
   // Waits and adds the neighbours' partials into `partial`.
-  void finish(std::vector<int128>& partial);
-  void sum(std::vector<int128>& partial) {
+  void finish(std::vector<Fixed>& partial);
+  void sum(std::vector<Fixed>& partial) {
     start(partial);
     finish(partial);
   }
@@ -27,7 +27,7 @@ class OverlapExchange {
  private:
   const Model& model_;
   int width_;
-  std::vector<std::vector<int128>> send_, recv_;
+  std::vector<std::vector<Fixed>> send_, recv_;
   std::vector<MPI_Request> requests_;
 };
 

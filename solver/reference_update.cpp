@@ -235,7 +235,7 @@ void rebuild_on_reference(Model& md, State& st, const Scene& scene, const Comm& 
       st.u[3 * k + i] = r[kU + i], st.v[3 * k + i] = r[kV + i], st.u_ref[3 * k + i] = r[kRef + i];
     }
   st.force.assign(3 * next.n, 0.0);
-  st.partial.assign(3 * next.n, int128(0));
+  st.partial.assign(3 * next.n, Fixed(0));
   md = std::move(next);
 }
 

@@ -119,6 +119,8 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   };
   std::optional<OverlapExchange> exchange;
   exchange.emplace(md, 3);
+  const int die_count = int(md.dies.size());
+  int headroom = force_headroom(md, die_count, comm);  // of the fixed-point force sums
   std::vector<double> v_old(st.v.size());
   // A reference update changes the rank's local particles: what is sized by them is rebuilt.
   auto rebind = [&] {
@@ -127,6 +129,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     dies = std::make_unique<DieContact>(md, scene, md.dies);
     dies->totals() = totals;
     exchange.emplace(md, 3);
+    headroom = force_headroom(md, die_count, comm);
     results = collectively(comm, [&] { return std::make_unique<ResultWriter>(opt.case_dir, md, results->frames()); });
     v_old.assign(st.v.size(), 0.0);
   };
@@ -248,7 +251,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       if (next_output - st.t > 1e-9 * out_dt) dt = std::min(dt, next_output - st.t);
     }
     const double dt_avg = st.step == 0 ? 0.5 * dt : 0.5 * (st.dt_half + dt);
-    const FixedScale scale = FixedScale::for_bound(red[1]);
+    const FixedScale scale = FixedScale::for_bound(red[1], headroom);
     clear_internal_force(st);
     add_internal_force(md, st, scale, md.boundary_points);
     dies->add_to(st, scale);  // contact forces of the owned particles, once over all ranks

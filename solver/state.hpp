@@ -17,7 +17,7 @@ struct State {
 
   // particles (3 per particle)
   std::vector<double> u, v, force;  // displacement d_I, velocity, net internal force f^int_I
-  std::vector<int128> partial;      // fixed-point force accumulators (own points, then summed)
+  std::vector<Fixed> partial;      // fixed-point force accumulators (own points, then summed)
 
   // integration points
   std::vector<double> F;       // 9 per point, row-major F_ik = delta_ik + sum_I u_Ii dN_I/dX_k

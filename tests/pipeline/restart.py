@@ -48,8 +48,9 @@ tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", split, "--quiet", "--resta
                "--set", "time.output_interval=2e-6"])
 rkcase.check(same(final(whole), final(split)), "stopped at 4 us and restarted to 8 us: bitwise equal, same frames")
 
-# CFL 0.5: at the default 0.9 this run can end before the test has found its ranks to kill
-long = ["time.end=16e-6", "time.output_interval=4e-6", "output.checkpoint_steps=50", "time.cfl=0.5"]
+# CFL 0.1 (3 700 steps, about 3 s): at larger steps this run can end before the test has found its
+# ranks to kill (at 0.5 it took 0.65 s)
+long = ["time.end=16e-6", "time.output_interval=4e-6", "output.checkpoint_steps=50", "time.cfl=0.1"]
 whole = copy("kill_whole")
 tools.solve(whole, 2, sets=long)
 killed = copy("kill_killed")
