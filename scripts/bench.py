@@ -63,7 +63,7 @@ def update_cost(neighbours, plastic_fraction):
 def machine_limit(machine, cost, points):
     """The fastest one core could do one update: the larger of the memory time (at the bandwidth of
     the working set's level: in cache up to 16 MiB, else DRAM) and the compute time (at this build's
-    peak: SSE2, or the machine's vectors with RK_NATIVE, no FMA; the core's AVX-512 FMA peak for reference)."""
+    peak: the machine's vectors with RK_NATIVE, else SSE2; the core's AVX-512 FMA peak for reference)."""
     bw = machine["triad_gb_per_s"]
     working_set = cost["bytes"] * points
     gbs = bw["16384_kib"] if working_set <= 16 << 20 else bw["1048576_kib"]
@@ -150,7 +150,7 @@ def report(res, a):
         bw = ", ".join(f"{k.replace('_kib', ' KiB')}: {v:.0f}" for k, v in m["triad_gb_per_s"].items())
         md += ["## Machine (one core, build/bin/rkmachine)", "",
                f"STREAM triad GB/s by working set: {bw}; peak {m['gflop_per_s_this_build']:.1f} GFLOP/s as this build "
-               f"compiles ({m.get('build_vector_bits', 128)}-bit vectors, no FMA), "
+               f"compiles ({m.get('build_vector_bits', 128)}-bit vectors), "
                f"{m.get('gflop_per_s_avx512_fma', float('nan')):.1f} with AVX-512 FMA", ""]
     if "seed" in res:
         s = res["seed"]

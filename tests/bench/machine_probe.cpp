@@ -1,9 +1,9 @@
 // rkmachine: what one core of this machine can do, for the bench's machine-limit estimate (issue 7).
 // Measures the memory bandwidth (STREAM triad a = b + s c, 24 bytes per element as STREAM counts
 // them) for working sets from cache-sized to DRAM-sized, and the peak double-precision rate of
-// independent multiply-add chains, both as this build compiles them (the project's flags: SSE2, or
-// the machine's vector units with RK_NATIVE; ISO C++ contracts no FMA) and with AVX-512 FMA where
-// the CPU has it (the core's peak). Prints one JSON object.
+// independent multiply-add chains, both as this build compiles them (the project's flags: the
+// machine's vector units with RK_NATIVE, else SSE2; GCC contracts x * m + c to FMA where the target
+// has it) and with AVX-512 FMA where the CPU has it (the core's peak). Prints one JSON object.
 //   rkmachine [--seconds S]   (each measurement repeats for about S seconds, best rate kept)
 #include <chrono>
 #include <cstdio>
