@@ -1,22 +1,21 @@
 #include "kinematics.hpp"
 
+#include "row3.hpp"
+
 namespace rk {
 namespace {
 
 template <bool kUpdated>
 void gather_gradients(const Model& md, State& st) {
   for (std::size_t g = 0; g < md.m; ++g) {
-    double F[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    Row3 row[3] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};  // rows of F
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
       const std::size_t J = 3 * std::size_t(md.nbr[k]);
-      const double* d = &md.dN[3 * std::size_t(k)];
-      for (int i = 0; i < 3; ++i) {
-        const double u = kUpdated ? st.u[J + i] - st.u_ref[J + i] : st.u[J + i];
-        for (int j = 0; j < 3; ++j) F[3 * i + j] += u * d[j];
-      }
+      const Row3 d = load_row3(&md.dN[3 * std::size_t(k)]);
+      for (int i = 0; i < 3; ++i) row[i] += (kUpdated ? st.u[J + i] - st.u_ref[J + i] : st.u[J + i]) * d;
     }
-    double* out = &st.F[9 * g];
-    for (int i = 0; i < 9; ++i) out[i] = F[i];
+    double* F = &st.F[9 * g];
+    for (int i = 0; i < 9; ++i) F[i] = row[i / 3][i % 3];
     st.J[g] = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) + F[2] * (F[3] * F[7] - F[4] * F[6]);
   }
 }
