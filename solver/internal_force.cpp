@@ -23,10 +23,10 @@ void add_internal_force(const Model& md, State& st, const FixedScale& scale, std
     // w times the fixed-point scale, a power of two: ws x rounds exactly as scale.fixed(w x) does
     const double ws = md.weight[g] * scale.to_fixed;
     const double* P = &st.P[9 * std::size_t(g)];
-    const Row3 column[3] = {{P[0], P[3], P[6], 0}, {P[1], P[4], P[7], 0}, {P[2], P[5], P[8], 0}};
+    const Row3 column[3] = {make_row3(P[0], P[3], P[6]), make_row3(P[1], P[4], P[7]), make_row3(P[2], P[5], P[8])};
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
       const Row3 d = load_row3(&md.dN[3 * std::size_t(k)]);
-      const FixedRow3 f = __builtin_convertvector(ws * (column[0] * d[0] + column[1] * d[1] + column[2] * d[2]), FixedRow3);
+      const FixedRow3 f = truncate_row(ws * (column[0] * d[0] + column[1] * d[1] + column[2] * d[2]));
       Fixed* acc = &st.partial[3 * std::size_t(md.nbr[k])];
       for (int i = 0; i < 3; ++i) acc[i] += f[i];
     }

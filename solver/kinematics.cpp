@@ -8,7 +8,7 @@ namespace {
 template <bool kUpdated>
 void gather_gradients(const Model& md, State& st) {
   for (std::size_t g = 0; g < md.m; ++g) {
-    Row3 row[3] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};  // rows of F
+    Row3 row[3] = {make_row3(1, 0, 0), make_row3(0, 1, 0), make_row3(0, 0, 1)};  // rows of F
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
       const std::size_t J = 3 * std::size_t(md.nbr[k]);
       const Row3 d = load_row3(&md.dN[3 * std::size_t(k)]);

@@ -1,11 +1,38 @@
-// A row of three doubles held in a four-wide vector (one AVX register, two SSE2 registers): the
-// neighbour loops update all three components of a row with one instruction stream. Lane 3 is 0.
+// A row of three doubles updated as one: F_i. += u_i grad N and f += w P grad N in the neighbour
+// loops. With AVX it is a four-wide vector (lane 3 is 0), one register and one instruction per
+// update; without, three scalars (two-register vectors of four cost 4-5x more there: measured).
 #pragma once
+
 namespace rk {
 
+#ifdef __AVX__
 using Row3 = double __attribute__((vector_size(32)));
-using FixedRow3 = long long __attribute__((vector_size(32)));  // truncated to integers (fixed_point.hpp)
+using FixedRow3 = long long __attribute__((vector_size(32)));
+inline Row3 make_row3(double a, double b, double c) { return Row3{a, b, c, 0.0}; }
+inline FixedRow3 truncate_row(Row3 r) { return __builtin_convertvector(r, FixedRow3); }  // fixed_point.hpp
+#else
+struct Row3 {
+  double v[3];
+  double operator[](int i) const { return v[i]; }
+  Row3& operator+=(const Row3& o) {
+    for (int i = 0; i < 3; ++i) v[i] += o.v[i];
+    return *this;
+  }
+  friend Row3 operator+(Row3 a, const Row3& b) { return a += b; }
+  friend Row3 operator*(double s, Row3 a) {
+    for (double& x : a.v) x *= s;
+    return a;
+  }
+  friend Row3 operator*(Row3 a, double s) { return s * a; }
+};
+struct FixedRow3 {
+  long long v[3];
+  long long operator[](int i) const { return v[i]; }
+};
+inline Row3 make_row3(double a, double b, double c) { return Row3{{a, b, c}}; }
+inline FixedRow3 truncate_row(Row3 r) { return {{(long long)r.v[0], (long long)r.v[1], (long long)r.v[2]}}; }
+#endif
 
-inline Row3 load_row3(const double* p) { return Row3{p[0], p[1], p[2], 0.0}; }
+inline Row3 load_row3(const double* p) { return make_row3(p[0], p[1], p[2]); }
 
 }  // namespace rk
