@@ -10,14 +10,16 @@ namespace {
 
 // The points g .. g+n of one cell, kLanes at a time (the rest of the lanes at rest).
 void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n, J2Batch& b) {
+  Lane r = splat(1);  // Jbar / J
+  for (int l = 0; l < n && md.fbar; ++l) r[l] = st.cell_J[c] / st.J[g + l];
+  const Lane ratio = cube_root_near_one(r);
   for (int l = 0; l < kLanes; ++l) {
     if (l >= n) {
       b.at_rest(l);
       continue;
     }
     const std::size_t p = g + l;
-    const double ratio = md.fbar ? std::cbrt(st.cell_J[c] / st.J[p]) : 1.0;
-    for (int i = 0; i < 9; ++i) b.F.v[i][l] = ratio * st.F[9 * p + i];
+    for (int i = 0; i < 9; ++i) b.F.v[i][l] = ratio[l] * st.F[9 * p + i];
     for (int i = 0; i < 6; ++i) b.cp_inv.v[i][l] = st.cp_inv[6 * p + i];
     b.ep[l] = st.ep[p];
   }

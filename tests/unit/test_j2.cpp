@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "material/j2_plasticity.hpp"
 
@@ -161,4 +162,19 @@ TEST(J2, EachLaneComputesWhatItWouldAlone) {
       }
     }
   }
+}
+
+// The F-bar ratio's cube root (lanes.hpp) against libm: within 2 ulp near 1, libm's own value far out.
+TEST(J2, CubeRootNearOneMatchesLibm) {
+  for (double r = 0.85; r <= 1.15; r += 1.37e-4) {
+    rk::Lane x = rk::splat(r);
+    x[0] = 1 + (r - 1) * 1e-6;  // and very near 1
+    const rk::Lane y = rk::cube_root_near_one(x);
+    for (int l = 0; l < 2; ++l) {
+      const double exact = std::cbrt(x[l]);
+      EXPECT_LE(std::abs(y[l] - exact), 2 * std::numeric_limits<double>::epsilon() * exact) << "r = " << x[l];
+    }
+  }
+  EXPECT_EQ(rk::cube_root_near_one(rk::splat(8.0))[1], 2.0);
+  EXPECT_EQ(rk::cube_root_near_one(rk::splat(1.0))[0], 1.0);
 }
