@@ -53,8 +53,9 @@ TEST(DieSearch, SignedGapOutsideInsideEdgesCorners) {
     const rk::DieHit hit = search.nearest(k.x);
     ASSERT_TRUE(hit.found);
     EXPECT_NEAR(hit.gap, k.gap, 1e-12) << k.x[0] << "," << k.x[1] << "," << k.x[2];
-    if (k.n[0] || k.n[1] || k.n[2])
+    if (k.n[0] || k.n[1] || k.n[2]) {  // braces: EXPECT_NEAR expands to an if-else
       for (int i = 0; i < 3; ++i) EXPECT_NEAR(hit.normal[i], k.n[i], 1e-12);
+    }
   }
   const double far[3] = {5, 5, 5};
   EXPECT_FALSE(search.nearest(far).found) << "beyond the search margin";
