@@ -6,9 +6,9 @@
 namespace rk {
 namespace {
 
-// Matrix logarithm of b = I + X and exponential of A by truncated series, for the small elastic
-// stretches of metals (|X| <= 0.1): rational and polynomial in the argument, so exactly objective,
-// and ~3x cheaper than an eigen-decomposition. All the matrices of one series commute, so their
+// Matrix logarithm of b = I + X and exponential of A by truncated series, for the elastic stretches
+// of metals (|X| <= 0.5): rational and polynomial in the argument, so exactly objective, and
+// cheaper than an eigen-decomposition (which, per point, would not run across lanes). All the matrices of one series commute, so their
 // products are symmetric (commuting_product). The number of terms, per lane, keeps the truncation
 // below 1e-17; each lane starts its Horner recursion at its own term, so it computes what it would
 // alone.
@@ -97,8 +97,9 @@ void j2_update(const J2Params& p, J2Batch& b) {
   const Sym be = congruence(b.F, b.cp_inv, false);  // trial elastic left Cauchy-Green tensor
   const Sym X = be + identity_sym(splat(-1));
   const Lane norm = sqrt(norm2(X));
-  // eps = log(b_e) / 2: by series, or spectrally where the elastic stretch is large (|X| > 0.1)
-  const LaneMask spectral = norm > 0.1;
+  // eps = log(b_e) / 2: by series, or spectrally where the elastic stretch is large (|X| > 0.5,
+  // beyond 17 terms of the series)
+  const LaneMask spectral = norm > 0.5;
   Sym eps = splat(0.5) * log_series(X, norm, ~spectral);
   Eigen::Matrix3d vectors[kLanes];
   for (int l = 0; l < kLanes && any(spectral); ++l) {
