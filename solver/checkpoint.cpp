@@ -83,6 +83,15 @@ void write_checkpoint(const std::string& case_dir, const Model& md, const State&
   commit_file(tmp, path);  // fsync, rename, fsync the folder
 }
 
+void remove_checkpoints(const std::string& case_dir, int rank) {
+  const std::string path = checkpoint_path(case_dir, rank);
+  for (const std::string& p : {path, path + ".previous"}) {
+    std::error_code failed;
+    std::filesystem::remove(p, failed);
+    if (failed) throw Error(p + ": an earlier run's checkpoint cannot be removed (" + failed.message() + ")");
+  }
+}
+
 namespace {
 
 std::int64_t checkpoint_step(const std::string& path) {  // -1: absent or unreadable

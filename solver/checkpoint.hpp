@@ -24,6 +24,10 @@ struct RunClock {
 
 std::string checkpoint_path(const std::string& case_dir, int rank);
 
+// A new run (not a restart) removes this rank's checkpoints of an earlier run: a later --restart
+// must not take the earlier run's newer step for this run's.
+void remove_checkpoints(const std::string& case_dir, int rank);
+
 // Collective: the file this rank restarts from, the newest checkpoint step held by every rank.
 // One clear error on every rank when there is none.
 std::string restart_checkpoint(const std::string& case_dir, const Comm& comm);

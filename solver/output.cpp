@@ -1,7 +1,5 @@
 #include "output.hpp"
 
-#include "internal_force.hpp"
-
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>

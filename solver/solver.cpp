@@ -104,6 +104,8 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   if (opt.restart) {
     const std::string path = restart_checkpoint(opt.case_dir, comm);
     collectively(comm, [&] { return read_checkpoint(path, md, st, clock, dies->totals()), 0; });
+  } else {
+    collectively(comm, [&] { return remove_checkpoints(opt.case_dir, comm.rank()), 0; });
   }
   auto results = collectively(comm, [&] {
     return std::make_unique<ResultWriter>(opt.case_dir, md, opt.restart ? clock.frames : -1);

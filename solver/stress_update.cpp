@@ -37,12 +37,11 @@ void first_piola(const Model& md, State& st, std::size_t g, int n, double pc) {
     for (int i = 0; i < 6; ++i) te.v[i][l] = t[i] + (i < 3 ? shift : 0.0);
   }
   const Lane inv_det = 1 / cofactor(F, cof);
-  const Lane* s = te.v;
-  const Lane full[9] = {s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2]};
+  const Mat t = full(te);
   Lane P[9], norm2{};
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
-      P[3 * i + j] = (full[3 * i] * cof.v[j] + full[3 * i + 1] * cof.v[3 + j] + full[3 * i + 2] * cof.v[6 + j]) * inv_det;
+      P[3 * i + j] = (t.v[3 * i] * cof.v[j] + t.v[3 * i + 1] * cof.v[3 + j] + t.v[3 * i + 2] * cof.v[6 + j]) * inv_det;
       norm2 += P[3 * i + j] * P[3 * i + j];
     }
   for (int l = 0; l < n; ++l) {

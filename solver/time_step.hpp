@@ -18,7 +18,8 @@ struct StableStep {
 
 StableStep stable_time_step(const Model& md, const State& st, double cfl);
 
-// Smallest principal stretch of F: sqrt of the smallest eigenvalue of C = F^T F (closed form).
-double smallest_stretch(const double F[9]);
+// Smallest principal stretch of F: sqrt of the smallest eigenvalue of C = F^T F (closed form);
+// det F as the kinematics computed it (State::J).
+double smallest_stretch(const double F[9], double detF);
 
 }  // namespace rk

@@ -102,7 +102,7 @@ void j2_update(const J2Params& p, J2Batch& b) {
   const LaneMask spectral = norm > 0.5;
   Sym eps = splat(0.5) * log_series(X, norm, ~spectral);
   Eigen::Matrix3d vectors[kLanes];
-  for (int l = 0; l < kLanes && any(spectral); ++l) {
+  for (int l = 0; l < kLanes; ++l) {
     if (!spectral[l]) continue;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(lane_of(be, l));
     vectors[l] = eig.eigenvectors();
@@ -125,7 +125,7 @@ void j2_update(const J2Params& p, J2Batch& b) {
   // spectrally where the stretch is large.
   const Sym deps_p = (1 - scale) * dev;
   Sym be_new = commuting_product(be, exp_series(splat(-2) * deps_p, 2 * sqrt(norm2(deps_p))));
-  for (int l = 0; l < kLanes && any(spectral & b.plastic); ++l) {
+  for (int l = 0; l < kLanes; ++l) {
     if (!spectral[l] || !b.plastic[l]) continue;
     const Eigen::Matrix3d& V = vectors[l];
     const Eigen::Vector3d e = (V.transpose() * lane_of(scale * dev + identity_sym(vol / 3), l) * V).diagonal();

@@ -28,9 +28,6 @@ struct J2Params {
     return p;
   }
   double yield(double ep) const { return power_law ? strength * std::pow(eps0 + ep, exponent) : yield0 + hardening * ep; }
-  double slope(double ep) const {
-    return power_law ? exponent * strength * std::pow(eps0 + ep, exponent - 1) : hardening;
-  }
   // sigma_y and d sigma_y / d ep together (one pow for the power law)
   void yield_and_slope(double ep, double& y, double& h) const {
     if (!power_law) {

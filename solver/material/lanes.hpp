@@ -40,7 +40,7 @@ inline Lane cube_root_near_one(Lane r) {
   Lane x = 1 + e * (1.0 / 3 - e * (1.0 / 9));
   for (int i = 0; i < 2; ++i) x -= (x * x * x - r) / (3 * x * x);
   const LaneMask far = (e > 0.1) | (e < -0.1);
-  for (int l = 0; l < kLanes && any(far); ++l)
+  for (int l = 0; l < kLanes; ++l)
     if (far[l]) x[l] = std::cbrt(r[l]);
   return x;
 }
@@ -93,14 +93,18 @@ inline Sym inverse(const Sym& A) {  // adjugate / det
            (a[3] * a[5] - a[0] * a[4]) * inv, c5 * inv}};
 }
 
+inline Mat full(const Sym& S) {
+  const Lane* s = S.v;
+  return {{s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2]}};
+}
+
 // F S F^T (transpose = false) or F^T S F (transpose = true)
 inline Sym congruence(const Mat& F, const Sym& S, bool transpose) {
-  const Lane* s = S.v;
-  const Lane full[9] = {s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2]};
+  const Mat s = full(S);
   auto f = [&](int i, int j) { return transpose ? F.v[3 * j + i] : F.v[3 * i + j]; };
   Lane A[9];  // f S
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) A[3 * i + j] = f(i, 0) * full[j] + f(i, 1) * full[3 + j] + f(i, 2) * full[6 + j];
+    for (int j = 0; j < 3; ++j) A[3 * i + j] = f(i, 0) * s.v[j] + f(i, 1) * s.v[3 + j] + f(i, 2) * s.v[6 + j];
   auto c = [&](int i, int j) { return A[3 * i] * f(j, 0) + A[3 * i + 1] * f(j, 1) + A[3 * i + 2] * f(j, 2); };
   return {{c(0, 0), c(1, 1), c(2, 2), c(0, 1), c(1, 2), c(2, 0)}};
 }

@@ -2,8 +2,8 @@
 ends bitwise equal to the uninterrupted run, frames and all; (2) a rank killed with SIGKILL mid-run
 stops the whole job quickly, leaves the last good checkpoint, and the restart from it ends bitwise
 equal to the uninterrupted run; (3) a job killed between its ranks' checkpoint writes (one rank a
-checkpoint behind) restarts from the newest step every rank holds, bitwise; with no checkpoint,
---restart is one clear error."""
+checkpoint behind) restarts from the newest step every rank holds, bitwise; a new run drops an
+older run's checkpoints; with no checkpoint, --restart is one clear error."""
 import os
 import re
 import shutil
@@ -46,7 +46,18 @@ split = copy("restart_split")
 tools.solve(split, 2, sets=["time.end=4e-6"] + out)
 tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", split, "--quiet", "--restart", "--set", "time.end=8e-6",
                "--set", "time.output_interval=2e-6"])
-rkcase.check(same(final(whole), final(split)), "stopped at 4 us and restarted to 8 us: bitwise equal, same frames")
+reference = final(whole)
+rkcase.check(same(reference, final(split)), "stopped at 4 us and restarted to 8 us: bitwise equal, same frames")
+
+# A new run in a case that holds an older, different run's checkpoints (CFL 0.5, to 8 us) must not
+# restart from them: run to 4 us, restart to 8 us, and get the whole run (the older 8-us checkpoint
+# would be the newest step every rank holds).
+stale = copy("restart_stale")
+tools.solve(stale, 2, sets=["time.end=8e-6", "time.cfl=0.5"] + out)
+tools.solve(stale, 2, sets=["time.end=4e-6"] + out)
+tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", stale, "--quiet", "--restart", "--set", "time.end=8e-6",
+           "--set", "time.output_interval=2e-6"])
+rkcase.check(same(reference, final(stale)), "a new run drops an older run's checkpoints: its restart ends bitwise equal")
 
 # CFL 0.1 (3 700 steps, about 3 s): at larger steps this run can end before the test has found its
 # ranks to kill (at 0.5 it took 0.65 s)

@@ -26,10 +26,10 @@ TEST(TimeStep, SmallestStretchIsTheSmallestSingularValue) {
     double F[9];
     stretch_between_rotations(k[0], k[1], k[2], F);
     const double expected = std::min({k[0], k[1], k[2]});
-    EXPECT_NEAR(rk::smallest_stretch(F), expected, 1e-11 * expected) << k[0] << " " << k[1] << " " << k[2];
+    EXPECT_NEAR(rk::smallest_stretch(F, k[0] * k[1] * k[2]), expected, 1e-11 * expected) << k[0] << " " << k[1] << " " << k[2];
   }
   const double shear[9] = {1, 1, 0, 0, 1, 0, 0, 0, 1};  // simple shear, gamma = 1: (sqrt 5 - 1) / 2
-  EXPECT_NEAR(rk::smallest_stretch(shear), (std::sqrt(5.0) - 1) / 2, 1e-12);
+  EXPECT_NEAR(rk::smallest_stretch(shear, 1.0), (std::sqrt(5.0) - 1) / 2, 1e-12);
 }
 
 }  // namespace
