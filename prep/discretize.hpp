@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cad_mesh.hpp"
+#include "nodal_integration.hpp"
 
 namespace rk {
 
@@ -15,6 +16,7 @@ struct Discretization {
   std::vector<std::int32_t> point_cell;
   std::vector<double> volume;   // per particle
   std::vector<double> spacing;  // per particle
+  DualFaces faces;  // nodal integration only: the dual-cell face points, plus/minus numbered as points
 };
 
 Discretization discretize(const VolumeMesh& mesh, int gauss_order);

@@ -81,7 +81,11 @@ int run(int argc, char** argv) {
     return rk::mesh_cad({scene.geometry.cad, scene.geometry.unit, scene.discretization.spacing});
   });
   const rk::Discretization disc =
-      timer.run("discretize", [&] { return rk::discretize(mesh, scene.discretization.gauss_order); });
+      timer.run("discretize", [&] {
+        rk::Discretization d = rk::discretize(mesh, scene.discretization.gauss_order);
+        if (scene.discretization.integration == "nodal") rk::use_nodal_points(mesh, d);
+        return d;
+      });
   const auto dies = timer.run("dies", [&] {
     std::vector<rk::DieSurface> out;
     for (const auto& die : scene.dies) {

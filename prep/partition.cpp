@@ -55,6 +55,15 @@ std::vector<Subdomain> build_subdomains(const SubdomainRequest& r) {
   for (std::size_t c = 0; c < nc; ++c) cells_of[r.cell_rank[c]].push_back(std::int32_t(c));
   for (std::size_t g = 0; g < r.disc.point_weight.size(); ++g)
     points_of[r.cell_rank[r.disc.point_cell[g]]].push_back(std::int32_t(g));
+  // nodal integration: the face points of each rank's points (on either side)
+  const DualFaces& faces = r.disc.faces;
+  std::vector<std::vector<std::int32_t>> faces_of(r.ranks);
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const int a = r.cell_rank[r.disc.point_cell[faces.plus[f]]];
+    faces_of[a].push_back(std::int32_t(f));
+    if (faces.minus[f] >= 0 && r.cell_rank[r.disc.point_cell[faces.minus[f]]] != a)
+      faces_of[r.cell_rank[r.disc.point_cell[faces.minus[f]]]].push_back(std::int32_t(f));
+  }
 
   // Local particles of each rank: the cells' nodes, the supports of its points and of its owned
   // particles.
@@ -65,6 +74,7 @@ std::vector<Subdomain> build_subdomains(const SubdomainRequest& r) {
       request.cell_nodes.insert(request.cell_nodes.end(), &r.mesh.cell_nodes[r.mesh.cell_offsets[c]],
                                 &r.mesh.cell_nodes[r.mesh.cell_offsets[c + 1]]);
     for (auto g : points_of[q]) request.points.insert(request.points.end(), &r.disc.point_X[3 * g], &r.disc.point_X[3 * g] + 3);
+    for (auto f : faces_of[q]) request.points.insert(request.points.end(), &faces.X[3 * f], &faces.X[3 * f] + 3);
     for (std::size_t I = 0; I < n; ++I)
       if (owner[I] == q) request.owned.push_back(std::int32_t(I));
     local[q] = local_particles(request);
@@ -97,10 +107,20 @@ std::vector<Subdomain> build_subdomains(const SubdomainRequest& r) {
         s.cell_nodes.push_back(local_index[r.mesh.cell_nodes[k]]);
       s.cell_node_offsets.push_back(std::int32_t(s.cell_nodes.size()));
     }
+    std::vector<std::int32_t> point_local(r.disc.point_weight.size(), -1);
     for (auto g : points_of[q]) {
+      point_local[g] = std::int32_t(s.point_weight.size());
       s.point_X.insert(s.point_X.end(), &r.disc.point_X[3 * g], &r.disc.point_X[3 * g] + 3);
       s.point_weight.push_back(r.disc.point_weight[g]);
       s.point_cell.push_back(cell_local[r.disc.point_cell[g]]);
+    }
+    for (auto f : faces_of[q]) {  // this rank's point first: a face whose plus is elsewhere turns round
+      const std::int32_t plus = point_local[faces.plus[f]], minus = faces.minus[f] < 0 ? -1 : point_local[faces.minus[f]];
+      const double sign = plus >= 0 ? 1.0 : -1.0;
+      s.face_plus.push_back(plus >= 0 ? plus : minus);
+      s.face_minus.push_back(plus >= 0 ? minus : -1);
+      s.face_X.insert(s.face_X.end(), &faces.X[3 * f], &faces.X[3 * f] + 3);
+      for (int i = 0; i < 3; ++i) s.face_nA.push_back(sign * faces.nA[3 * f + i]);
     }
     overlap_maps(local, q, s.neighbour_ranks, s.overlap);
   }

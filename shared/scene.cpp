@@ -312,7 +312,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
       throw Error(name + ": key 'discretization.dilation' = " + std::to_string(o.dilation) +
                   " gives a support too small for the " + o.basis + " basis (minimum " +
                   std::to_string(minimum_dilation(o.basis)) + ")");
-    o.integration = d.text("integration", o.integration, {"gauss"});
+    o.integration = d.text("integration", o.integration, {"gauss", "nodal"});
     o.gauss_order = d.integer("gauss_order", o.gauss_order, 1, 3);
     o.volumetric = d.text("volumetric", o.volumetric, {"fbar", "none"});
     o.ebc_method = d.text("ebc_method", o.ebc_method, {"nodal", "transformation"});
@@ -420,6 +420,9 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     if (s.reference_updates.strain > 0 && s.discretization.ebc_method == "transformation")
       throw Error(name + ": key 'reference_updates.strain' cannot be combined with 'discretization.ebc_method' = "
                   "transformation (its constraint rows are not rebuilt at an update); use nodal");
+    if (s.reference_updates.strain > 0 && s.discretization.integration == "nodal")
+      throw Error(name + ": key 'reference_updates.strain' cannot be combined with 'discretization.integration' = "
+                  "nodal (the smoothing cells are not rebuilt at an update); use gauss");
     r.done();
   }
   {

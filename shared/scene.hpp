@@ -76,7 +76,7 @@ struct Scene {
     double dilation = 2.0;    // support radius / local particle spacing
     std::string kernel = "cubic_bspline";
     std::string basis = "linear";
-    std::string integration = "gauss";
+    std::string integration = "gauss";  // gauss (cells' Gauss points) or nodal (SCNI, one point per particle)
     int gauss_order = 2;      // Gauss points per direction in each cell
     std::string volumetric = "fbar";  // fbar (cell-averaged dilatation) or none
     std::string ebc_method = "nodal"; // essential BCs: nodal (on the coefficients) or transformation (exact)

@@ -54,6 +54,12 @@ void write_subdomain_file(const std::string& path, const Subdomain& s) {
   f.write("points/X", s.point_X, 3);
   f.write("points/weight", s.point_weight);
   f.write("points/cell", s.point_cell);
+  if (s.face_count() > 0) {
+    f.write("faces/X", s.face_X, 3);
+    f.write("faces/nA", s.face_nA, 3);
+    f.write("faces/plus", s.face_plus);
+    f.write("faces/minus", s.face_minus);
+  }
   f.write("overlap/ranks", s.neighbour_ranks);
   for (std::size_t k = 0; k < s.neighbour_ranks.size(); ++k) {
     char name[40];
@@ -115,6 +121,12 @@ Subdomain read_subdomain(const std::string& path, int rank, int ranks, const std
   s.point_X = f.read<double>("points/X", 3);
   s.point_weight = f.read<double>("points/weight");
   s.point_cell = f.read<std::int32_t>("points/cell");
+  if (f.exists("faces")) {
+    s.face_X = f.read<double>("faces/X", 3);
+    s.face_nA = f.read<double>("faces/nA", 3);
+    s.face_plus = f.read<std::int32_t>("faces/plus");
+    s.face_minus = f.read<std::int32_t>("faces/minus");
+  }
   s.neighbour_ranks = f.read<std::int32_t>("overlap/ranks");
   for (auto q : s.neighbour_ranks) {
     char name[40];
@@ -153,6 +165,13 @@ Subdomain read_subdomain(const std::string& path, int rank, int ranks, const std
     require(s.point_cell[g] >= 0 && std::size_t(s.point_cell[g]) < c && s.point_weight[g] > 0 &&
                 std::isfinite(s.point_X[3 * g]),
             path, "integration point " + std::to_string(g) + " has a bad cell index, weight or position");
+  const std::size_t nf = s.face_plus.size();
+  require(s.face_X.size() == 3 * nf && s.face_nA.size() == 3 * nf && s.face_minus.size() == nf, path,
+          "face datasets disagree on their counts");
+  for (std::size_t q = 0; q < nf; ++q)
+    require(s.face_plus[q] >= 0 && std::size_t(s.face_plus[q]) < m && s.face_minus[q] >= -1 &&
+                s.face_minus[q] < std::int64_t(m) && std::isfinite(s.face_X[3 * q]) && std::isfinite(s.face_nA[3 * q]),
+            path, "face point " + std::to_string(q) + " has a bad point index or a non-finite position or normal");
   for (const auto& list : s.overlap)
     for (auto i : list) require(i >= 0 && std::size_t(i) < n, path, "an overlap map index is out of range");
   return s;

@@ -4,6 +4,8 @@
 //   particles/{global_id, X[n,3], volume, spacing, owner, flags}      local particles (owned + overlap)
 //   cells/{global_id, node_offsets[c+1], nodes}                      integration cells of this rank
 //   points/{X[m,3], weight, cell}                                    their integration points
+//   faces/{X[f,3], nA[f,3], plus, minus}                             nodal integration only: quadrature
+//                                                                    points on the points' smoothing-cell faces
 //   overlap/ranks, overlap/rank_NNNN                                 per neighbour: shared local
 //                                                                    particle indices, ascending global id
 //   dies/NNNN/{vertices[v,3], triangles[t,3]}  (attr die_count)      rigid die surfaces, outward
@@ -46,6 +48,12 @@ struct Subdomain {
   std::vector<double> point_weight;  // m^3
   std::vector<std::int32_t> point_cell;
 
+  // Nodal integration only (prep/nodal_integration.hpp): quadrature points on the faces of the
+  // points' smoothing cells; each adds +N_I(x) nA to the gradient sum of point face_plus and -N_I(x) nA
+  // to that of face_minus (-1: none on this rank, or the domain boundary).
+  std::vector<double> face_X, face_nA;  // 3 per face point
+  std::vector<std::int32_t> face_plus, face_minus;
+
   // Overlap maps: for neighbour_ranks[k], the shared particles' local indices (ascending global id).
   std::vector<std::int32_t> neighbour_ranks;
   std::vector<std::vector<std::int32_t>> overlap;
@@ -55,6 +63,7 @@ struct Subdomain {
   std::size_t particle_count() const { return global_id.size(); }
   std::size_t cell_count() const { return cell_global_id.size(); }
   std::size_t point_count() const { return point_weight.size(); }
+  std::size_t face_count() const { return face_plus.size(); }
 };
 
 std::string subdomain_path(const std::string& case_dir, int rank);

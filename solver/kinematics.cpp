@@ -28,7 +28,7 @@ void compute_deformation_gradient(const Model& md, State& st) {
   for (std::size_t c = 0; c < md.cells; ++c) {
     double wJ = 0, w = 0;
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) wJ += md.weight[g] * st.J[g], w += md.weight[g];
-    st.cell_J[c] = wJ / w;
+    st.cell_J[c] = w > 0 ? wJ / w : 1.0;  // (nodal integration leaves cells without points)
   }
 }
 

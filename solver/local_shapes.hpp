@@ -21,6 +21,9 @@ class LocalShapes {
   RkResult append(const double x[3], std::vector<std::int32_t>& cols, std::vector<double>& N,
                   std::vector<double>& dN) const;
 
+  // Appends the particles whose supports cover x (the columns append would give, unsorted across calls).
+  void covering(const double x[3], std::vector<std::int32_t>& cols) const { grid_.covering(x, cols); }
+
  private:
   std::vector<double> radius_;
   NeighbourGrid grid_;

@@ -1,6 +1,7 @@
 #include "model.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -12,27 +13,103 @@
 namespace rk {
 namespace {
 
-void build_shape_functions(Model& md, const Subdomain& sub, const Scene& scene) {
-  const LocalShapes shapes(md.Xr, sub.volume, md.spacing, scene);
+void require_regular(const Model& md, const RkResult& r, const double* x, std::size_t support, const char* where) {
+  if (r.regular) return;
+  std::ostringstream s;
+  s << "rank " << md.rank << ": the RK moment matrix is singular at the " << where << " at (" << x[0] << ", " << x[1]
+    << ", " << x[2] << ") m with " << support << " particles in its support (rcond " << r.rcond
+    << "); increase discretization.dilation";
+  throw Error(s.str());
+}
+
+void bound_gradients(Model& md) {
+  md.dN_max.assign(md.m, 0.0);
+  for (std::size_t g = 0; g < md.m; ++g)
+    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
+      md.dN_max[g] = std::max(md.dN_max[g], std::sqrt(md.dN[3 * k] * md.dN[3 * k] + md.dN[3 * k + 1] * md.dN[3 * k + 1] +
+                                                      md.dN[3 * k + 2] * md.dN[3 * k + 2]));
+}
+
+// Gauss points: N_I and grad N_I at each point.
+void build_shape_functions(Model& md, const Subdomain& sub, const LocalShapes& shapes) {
   md.nbr_offsets.assign(1, 0);
-  md.dN_max.resize(md.m);
   for (std::size_t g = 0; g < md.m; ++g) {
     const std::size_t k0 = md.nbr.size();
     const RkResult r = shapes.append(&md.point_X[3 * g], md.nbr, md.N, md.dN);  // ascending global id
-    if (!r.regular) {
-      std::ostringstream s;
-      s << "rank " << md.rank << ": the RK moment matrix is singular at the integration point at (" << sub.point_X[3 * g]
-        << ", " << sub.point_X[3 * g + 1] << ", " << sub.point_X[3 * g + 2] << ") m with " << md.nbr.size() - k0
-        << " particles in its support (rcond " << r.rcond << "); increase discretization.dilation";
-      throw Error(s.str());
-    }
-    double mx = 0;
-    for (std::size_t k = k0; k < md.nbr.size(); ++k)
-      mx = std::max(mx, std::sqrt(md.dN[3 * k] * md.dN[3 * k] + md.dN[3 * k + 1] * md.dN[3 * k + 1] +
-                                  md.dN[3 * k + 2] * md.dN[3 * k + 2]));
-    md.dN_max[g] = mx;
+    require_regular(md, r, &sub.point_X[3 * g], md.nbr.size() - k0, "integration point");
     md.nbr_offsets.push_back(std::int32_t(md.nbr.size()));
   }
+}
+
+// Adds sign * src (columns src_cols, a subset of the row's ascending columns) into the row at k0.
+void add_into_row(const Model& md, std::size_t k0, const std::vector<std::int32_t>& src_cols, const double* src,
+                  int width, double* row) {
+  std::size_t k = k0;
+  for (std::size_t j = 0; j < src_cols.size(); ++j) {
+    while (md.nbr[k] != src_cols[j]) ++k;
+    for (int i = 0; i < width; ++i) row[width * k + i] += src[width * j + i];
+  }
+}
+
+// Nodal integration (prep/nodal_integration.hpp): grad N_I at point L smoothed over its dual cell,
+// 1/V_L sum_q +-N_I(x_q) nA_q over its face points; N_I at the point itself. A point's columns are
+// the particles whose supports cover the point or any of its face points. Every face point is
+// evaluated once, in the subdomain's order (the same for every partition).
+void build_smoothed_gradients(Model& md, const Subdomain& sub, const LocalShapes& shapes) {
+  const std::size_t nf = sub.face_count();
+  std::vector<std::int32_t> face_offsets(md.m + 1, 0), face_of;  // point -> its face points
+  for (std::size_t q = 0; q < nf; ++q) {
+    ++face_offsets[sub.face_plus[q] + 1];
+    if (sub.face_minus[q] >= 0) ++face_offsets[sub.face_minus[q] + 1];
+  }
+  for (std::size_t g = 0; g < md.m; ++g) face_offsets[g + 1] += face_offsets[g];
+  face_of.resize(face_offsets.back());
+  std::vector<std::int32_t> fill(face_offsets.begin(), face_offsets.end() - 1);
+  for (std::size_t q = 0; q < nf; ++q) {
+    face_of[fill[sub.face_plus[q]]++] = std::int32_t(q);
+    if (sub.face_minus[q] >= 0) face_of[fill[sub.face_minus[q]]++] = std::int32_t(q);
+  }
+  md.nbr_offsets.assign(1, 0);
+  std::vector<std::int32_t> found;
+  std::vector<std::uint8_t> mark(md.n, 0);
+  for (std::size_t g = 0; g < md.m; ++g) {
+    found.clear();
+    shapes.covering(&md.point_X[3 * g], found);
+    for (auto k = face_offsets[g]; k < face_offsets[g + 1]; ++k) shapes.covering(&sub.face_X[3 * face_of[k]], found);
+    const std::size_t k0 = md.nbr.size();
+    for (auto I : found)
+      if (!mark[I]) mark[I] = 1, md.nbr.push_back(I);
+    std::sort(md.nbr.begin() + std::ptrdiff_t(k0), md.nbr.end());
+    for (auto k = k0; k < md.nbr.size(); ++k) mark[md.nbr[k]] = 0;
+    md.nbr_offsets.push_back(std::int32_t(md.nbr.size()));
+  }
+  md.N.assign(md.nbr.size(), 0.0);
+  md.dN.assign(3 * md.nbr.size(), 0.0);
+  std::vector<std::int32_t> cols;
+  std::vector<double> N, dN, terms;
+  auto evaluate = [&](const double* x, const char* where) {
+    cols.clear(), N.clear(), dN.clear();
+    require_regular(md, shapes.append(x, cols, N, dN), x, cols.size(), where);
+  };
+  for (std::size_t g = 0; g < md.m; ++g) {
+    evaluate(&md.point_X[3 * g], "integration point");
+    add_into_row(md, md.nbr_offsets[g], cols, N.data(), 1, md.N.data());
+  }
+  for (std::size_t q = 0; q < nf; ++q) {
+    evaluate(&sub.face_X[3 * q], "nodal-integration face point");
+    const double* nA = &sub.face_nA[3 * q];
+    for (const double sign : {1.0, -1.0}) {
+      const std::int32_t g = sign > 0 ? sub.face_plus[q] : sub.face_minus[q];
+      if (g < 0) continue;
+      terms.resize(3 * cols.size());
+      for (std::size_t j = 0; j < cols.size(); ++j)
+        for (int i = 0; i < 3; ++i) terms[3 * j + i] = sign * N[j] * nA[i];
+      add_into_row(md, md.nbr_offsets[g], cols, terms.data(), 3, md.dN.data());
+    }
+  }
+  for (std::size_t g = 0; g < md.m; ++g)
+    for (auto k = 3 * std::size_t(md.nbr_offsets[g]); k < 3 * std::size_t(md.nbr_offsets[g + 1]); ++k)
+      md.dN[k] /= md.weight[g];
 }
 
 // The shortest edge of each cell at t = 0 (hexahedra: 12 edges, tetrahedra: 6), for the time step; it
@@ -94,7 +171,12 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   }
   for (std::size_t c = 0; c < md.cells; ++c) md.cell_points[c + 1] += md.cell_points[c];
   md.cell_h0 = shortest_edges(md);
-  build_shape_functions(md, sub, scene);
+  const LocalShapes shapes(md.Xr, sub.volume, md.spacing, scene);
+  if (scene.discretization.integration == "nodal" && md.m > 0 && sub.face_count() == 0)
+    throw Error("subdomain of rank " + std::to_string(md.rank) + " holds no nodal-integration faces; re-run rkprep");
+  if (scene.discretization.integration == "nodal") build_smoothed_gradients(md, sub, shapes);
+  else build_shape_functions(md, sub, shapes);
+  bound_gradients(md);
 
   md.dies = sub.dies;
   md.neighbour_ranks = sub.neighbour_ranks;
@@ -114,7 +196,12 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
                     : J2Params::from(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress, mat.hardening_modulus,
                                      mat.model == MaterialModel::j2_linear);
   md.wave_modulus = md.material.bulk + 4.0 / 3.0 * md.material.shear;
-  md.fbar = scene.discretization.volumetric == "fbar";
+  // F-bar averages the dilatation over a cell's points: the identity where every cell has one point
+  // (Gauss order 1) and meaningless for nodal points; without it the stress update batches points
+  // across cells
+  bool shared_cells = false;
+  for (std::size_t c = 0; c < md.cells; ++c) shared_cells |= md.cell_points[c + 1] - md.cell_points[c] > 1;
+  md.fbar = scene.discretization.volumetric == "fbar" && scene.discretization.integration == "gauss" && shared_cells;
   return md;
 }
 

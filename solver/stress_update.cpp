@@ -55,8 +55,12 @@ void first_piola(const Model& md, State& st, std::size_t g, int n, double pc) {
 StressHealth update_stress(const Model& md, State& st) {
   StressHealth health;
   J2Batch b;
-  for (std::size_t c = 0; c < md.cells; ++c) {
-    const std::size_t g0 = md.cell_points[c], g1 = md.cell_points[c + 1];
+  // F-bar couples the points of a cell; without it (volumetric: none, nodal integration) the points
+  // go kLanes at a time whatever their cells
+  const std::size_t groups = md.fbar ? md.cells : (md.m + kLanes - 1) / kLanes;
+  for (std::size_t c = 0; c < groups; ++c) {
+    const std::size_t g0 = md.fbar ? std::size_t(md.cell_points[c]) : c * kLanes;
+    const std::size_t g1 = md.fbar ? std::size_t(md.cell_points[c + 1]) : std::min(md.m, g0 + kLanes);
     bool cell_ok = true;
     for (auto g = g0; g < g1; ++g)
       if (!(st.J[g] > 0) || !std::isfinite(st.J[g])) {

@@ -81,8 +81,11 @@ def spacings(variable, default):
 
 
 def convergence():
-    hs, end = ([1.6, 1.2], 20) if SMOKE else (spacings("TAYLOR_H", [0.9, 0.6, 0.45, 0.3, 0.2]), 80)
-    cases = [Case(f"taylor_h{h}", **taylor(h, end), h=h) for h in hs]
+    hs, end = ([1.6, 1.2], 20) if SMOKE else (spacings("TAYLOR_H", [0.9, 0.6, 0.45, 0.3, 0.185]), 80)
+    # the fine bars (31k and 111k particles, hours on one core) run on 2 ranks and checkpoint every
+    # 10 minutes of wall time, so RESUME=1 continues one that was stopped
+    cases = [Case(f"taylor_h{h}", **taylor(h, end, *(["output.checkpoint_minutes=10"] if h < 0.4 else []),
+                                            ranks=2 if h < 0.4 else 1), h=h) for h in hs]
     for h in ([3.0, 2.5] if SMOKE else spacings("UPSET_H", [2.5, 2.0, 1.25, 0.8])):
         solve = ["time.end=1.1e-3", "time.output_interval=1.1e-3"] if SMOKE else []
         cases.append(Case(f"upsetting_h{h}", **upsetting(h, *solve), h=h))
@@ -229,8 +232,10 @@ def solve(name):
     c = cases_of(study)[case_name]
     prep_dir = WORK / "prep" / c.prep_key
     out = WORK / study / c.name
-    shutil.rmtree(out, ignore_errors=True)
-    out.mkdir(parents=True)
+    resume = os.environ.get("RESUME") == "1" and (out / "checkpoint").is_dir()  # go on from its checkpoint
+    if not resume:
+        shutil.rmtree(out, ignore_errors=True)
+        out.mkdir(parents=True)
     result = {"study": study, "case": c.name, "label": c.label, "ranks": c.ranks, **c.tags,
               "prep": c.prep, "solve": c.solve}
     if (prep_dir / "refused.txt").exists():
@@ -238,8 +243,9 @@ def solve(name):
         result.update(verdict="refused by rkprep", message=(said or ["(no message)"])[0])
     else:
         for f in ("sub", "scene.resolved.yaml", "prep.json"):
-            (out / f).symlink_to(prep_dir / f)
-        args = ["mpirun", "-np", c.ranks, BIN / "rksolve", out, "--quiet"]
+            if not resume:
+                (out / f).symlink_to(prep_dir / f)
+        args = ["mpirun", "-np", c.ranks, BIN / "rksolve", out, "--quiet", *(["--restart"] if resume else [])]
         for s in c.solve:
             args += ["--set", s]
         p = run(args, check=False, timeout=CASE_TIMEOUT)

@@ -120,3 +120,12 @@ TEST(Scene, SyntaxErrorNamesTheLine) {
 }
 
 }  // namespace
+
+TEST(Scene, NodalIntegrationRefusesReferenceUpdates) {  // its smoothing cells are not rebuilt at an update
+  const auto e = error_of(kGood, {rk::parse_override("discretization.integration=nodal"),
+                                  rk::parse_override("reference_updates.strain=0.5")});
+  EXPECT_NE(e.find("'reference_updates.strain' cannot be combined with 'discretization.integration' = nodal"),
+            std::string::npos)
+      << e;
+  EXPECT_EQ(error_of(kGood, {rk::parse_override("discretization.integration=nodal")}), "");
+}
