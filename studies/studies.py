@@ -103,6 +103,7 @@ def tradeoffs():
                   ("basis quadratic", ["discretization.basis=quadratic", "discretization.dilation=3.0"], []),
                   ("gauss 1", ["discretization.gauss_order=1"], []), ("gauss 3", ["discretization.gauss_order=3"], []),
                   ("no F-bar", ["discretization.volumetric=none"], []),
+                  ("nodal integration", ["discretization.integration=nodal"], []),
                   ("ebc transformation", ["discretization.ebc_method=transformation"], [])]
         knobs += [(f"cfl {c}", [], [f"time.cfl={c}"]) for c in (0.1, 0.25, 0.5, 0.75)]
     cases = [Case("taylor_" + k.replace(" ", "_"), **taylor(h, end, *s, prep=p), label=k) for k, p, s in knobs]
@@ -110,6 +111,9 @@ def tradeoffs():
         solve = ["time.end=1.1e-3", "time.output_interval=1.1e-3"] if SMOKE else []
         cases.append(Case(f"upsetting_penalty{k}", **upsetting(3.0 if SMOKE else 2.0, f"contact.penalty_scale={k}",
                                                                 *solve), label=f"penalty {k}"))
+    if not SMOKE:
+        cases.append(Case("upsetting_nodal_integration", **upsetting(2.0, prep=["discretization.integration=nodal"]),
+                          label="upsetting nodal integration"))
     return cases
 
 
@@ -121,6 +125,10 @@ def stability():
         *[(f"jitter {j}", [f"discretization.jitter={j}"], []) for j in (0.1, 0.2, 0.4)],
         *[(f"nu {nu}", [], [f"material.poisson_ratio={nu}"]) for nu in (0.45, 0.49, 0.499)],
         *[(f"{v} m/s", [], [f"initial_conditions.velocity=[0,0,-{v}]"]) for v in (10, 100, 500, 1000)],
+        # nodal integration (one point per particle) at the extremes of the same table
+        ("nodal cfl 1.5", ["discretization.integration=nodal"], ["time.cfl=1.5"]),
+        ("nodal jitter 0.4", ["discretization.integration=nodal", "discretization.jitter=0.4"], []),
+        ("nodal 500 m/s", ["discretization.integration=nodal"], ["initial_conditions.velocity=[0,0,-500]"]),
         (f"elastic {DRIFT_END:g} s", [], ["initial_conditions.velocity=[1,0,0]", f"time.end={DRIFT_END}",
                                    "time.output_interval=1e-2", "output.checkpoint_steps=0"])]
     cases = [Case("taylor_" + k.replace(" ", "_").replace("/", ""),

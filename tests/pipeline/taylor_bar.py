@@ -3,6 +3,9 @@
 --stage checkpoint: coarse bar to 12 us, impact-face radius 5.35-5.55 mm (converged codes 5.44-5.46).
 --stage full: the seed's resolution (1369 particles) to 80 us: r_f 6.86-7.36 mm, L_f 21.15-21.75 mm,
 energy error <= 1 % of KE0, kinetic energy left <= 6 % of KE0 (BENCHMARKS.md case 1).
+--stage nodal: the same bar with nodal integration (SCNI, one point per particle): L_f in the band, r_f
+within 5 % of the converged FE 7.22 mm (the studies' "fast" tolerance; SCNI spreads the foot more than
+Gauss integration: 7.47 mm measured, above the band's 7.36), the same energy and kinetic-energy bounds.
 """
 import argparse
 import csv
@@ -18,7 +21,7 @@ from taylor_metrics import metrics
 ap = argparse.ArgumentParser()
 ap.add_argument("--bin", required=True)
 ap.add_argument("--work", required=True)
-ap.add_argument("--stage", choices=["checkpoint", "full"], required=True)
+ap.add_argument("--stage", choices=["checkpoint", "full", "nodal"], required=True)
 ap.add_argument("--ranks", type=int, default=1)
 a = ap.parse_args()
 tools = rkcase.Tools(a.bin, a.work)
@@ -28,7 +31,7 @@ if a.stage == "checkpoint":
     tools.prep(case, a.ranks, sets=["discretization.spacing=0.6e-3"])
     tools.solve(case, a.ranks, sets=["time.end=12e-6", "time.output_interval=6e-6"])
 else:
-    tools.prep(case, a.ranks)
+    tools.prep(case, a.ranks, sets=["discretization.integration=nodal"] if a.stage == "nodal" else [])
     tools.solve(case, a.ranks)
 tools.post(case)
 
@@ -62,7 +65,11 @@ else:
     r, L = m["footprint_radius_mm"], m["final_length_mm"]
     rkcase.check(prep["particles"] == 1369, "the seed's 1369 particles")
     rkcase.check(abs(m["time_s"] - 80e-6) < 1e-12, "last frame at 80 us")
-    rkcase.check(6.86 <= r <= 7.36, f"footprint radius {r:.3f} mm in 6.86-7.36 (seed RKPM 7.30, FEM 7.38)")
+    if a.stage == "nodal":
+        rkcase.check(prep["integration_points"] == prep["particles"], "nodal integration: one point per particle")
+        rkcase.check(abs(r / 7.22 - 1) <= 0.05, f"footprint radius {r:.3f} mm within 5 % of 7.22 (converged FE)")
+    else:
+        rkcase.check(6.86 <= r <= 7.36, f"footprint radius {r:.3f} mm in 6.86-7.36 (seed RKPM 7.30, FEM 7.38)")
     rkcase.check(21.15 <= L <= 21.75, f"final length {L:.3f} mm in 21.15-21.75 (seed RKPM 21.48, FEM 21.46)")
     ke_left = float(rows[-1]["kinetic"]) / ke0
     rkcase.check(ke_left <= 0.06, f"kinetic energy left {100 * ke_left:.2f} % <= 6 % of KE0")
