@@ -48,6 +48,10 @@ def metrics(case: Path, frame: int = -1, axis: int = 2) -> dict:
         "time_s": time,
         "particles": int(len(x)),
         "footprint_radius_mm": 1e3 * float(r[near].max()),
+        # resolution-independent companions: the rim curls off the wall, so "on the wall" (0.3 h) reads a
+        # smaller radius as h falls; the radius within fixed heights of the wall, and the largest radius
+        **{f"radius_{d:g}mm_mm": 1e3 * float(r[z - wall <= d * 1e-3].max()) for d in (0.1, 0.2)},
+        "max_radius_mm": 1e3 * float(r.max()),
         "final_length_mm": 1e3 * float(z.max() - wall),
         "max_eq_plastic_strain": float(np.max(data["eq_plastic_strain"])),
         "finite": bool(all(np.isfinite(np.asarray(v)).all() for v in data.values()) and np.isfinite(x).all()),

@@ -6,6 +6,8 @@ Driven by studies/Makefile (`make -C studies <name>`); by hand:
   studies.py prep KEY            rkprep one prepared discretization (shared by the cases that use it)
   studies.py solve STUDY/CASE    rksolve (+ rkpost) one case, in its own folder
   studies.py report STUDY        results/STUDY/{cases.csv, table.md, *.png}
+  studies.py adopt STUDY/CASE DIR [NOTE]  record a case solved elsewhere (its case folder) as if solved here
+  studies.py remeasure STUDY/CASE  measure a finished case again (after a metric changed)
 SMOKE=1 in the environment selects each study's two-point smoke version (tiny cases; `make test`).
 TAYLOR_H="0.9 0.6 0.45", UPSET_H="2.5 2 1.25" narrow the convergence series (spacings in mm).
 """
@@ -84,8 +86,10 @@ def convergence():
     hs, end = ([1.6, 1.2], 20) if SMOKE else (spacings("TAYLOR_H", [0.9, 0.6, 0.45, 0.3, 0.185]), 80)
     # the fine bars (31k and 111k particles, hours on one core) run on 2 ranks and checkpoint every
     # 10 minutes of wall time, so RESUME=1 continues one that was stopped
-    cases = [Case(f"taylor_h{h}", **taylor(h, end, *(["output.checkpoint_minutes=10"] if h < 0.4 else []),
-                                            ranks=2 if h < 0.4 else 1), h=h) for h in hs]
+    cases = [Case(f"taylor{tag}_h{h}", **taylor(h, end, *(["output.checkpoint_minutes=10"] if h < 0.4 else []), prep=prep,
+                                                 ranks=2 if h < 0.4 else 1), h=h, series=series)
+             for series, tag, prep in (("gauss", "", []), ("nodal", "_nodal", ["discretization.integration=nodal"]))
+             for h in hs]
     for h in ([3.0, 2.5] if SMOKE else spacings("UPSET_H", [2.5, 2.0, 1.25, 0.8])):
         solve = ["time.end=1.1e-3", "time.output_interval=1.1e-3"] if SMOKE else []
         cases.append(Case(f"upsetting_h{h}", **upsetting(h, *solve), h=h))
@@ -264,30 +268,58 @@ def solve(name):
             result.update(verdict="stopped with a diagnostic", message=said[0])
         else:
             result["verdict"] = "completed"
-        if (out / "solve.json").exists():
-            s = json.loads((out / "solve.json").read_text())
-            result.update({k: s[k] for k in ("wall_s", "setup_s", "steps", "particles", "integration_points",
-                                             "ns_per_point_update", "energy_error", "peak_memory_mb_max_rank")})
-        prep_json = json.loads((prep_dir / "prep.json").read_text())
-        result["prep_s"] = prep_json.get("wall_s")
-        if (out / "results").exists():
-            run([BIN / "rkpost", out, "--quiet"], check=False)
-        if (out / "vtk" / "case.pvd").exists():
-            if c.scene.startswith("taylor_bar/"):
-                m = taylor_metrics.metrics(out)
-                result.update(m)
-                result["error"] = sum(abs(m[k] / v - 1) for k, v in TAYLOR_REF.items())
-            elif c.scene == THIN_WALL:  # no reference: whether it holds together, its height, its strain
-                m = taylor_metrics.metrics(out)
-                result.update({k: m[k] for k in ("finite", "final_length_mm", "max_eq_plastic_strain")})
-            else:
-                u = upsetting_check.check(out)
-                result["force_errors"] = {f"{100 * f['reduction']:.0f}%": f["error"] for f in u["force"]}
-                result["error"] = max(abs(f["error"]) for f in u["force"]) if u["force"] else None
-                result["diameter_error"] = u["diameter_error"]
-            if result["verdict"] == "completed" and not result.get("finite", True):
-                result["verdict"] = "NON-FINITE OUTPUT"
+        measure(c, out, result)
     (out / "case.json").write_text(json.dumps(result, indent=2))
+
+
+def adopt(name, source, note=""):
+    """A case solved elsewhere (a bigger machine, another rank count: the answer does not depend on it)
+    from its case folder (sub/, results/, solve.json, ...): measured and recorded as if solved here."""
+    study, case_name = name.split("/")
+    c = cases_of(study)[case_name]
+    out = WORK / study / c.name
+    shutil.rmtree(out, ignore_errors=True)
+    shutil.copytree(source, out, symlinks=True)
+    s = json.loads((out / "solve.json").read_text())
+    result = {"study": study, "case": c.name, "label": c.label, "ranks": s["ranks"], **c.tags, "prep": c.prep,
+              "solve": c.solve, "verdict": "completed", "solved_elsewhere": note or str(source)}
+    measure(c, out, result)
+    (out / "case.json").write_text(json.dumps(result, indent=2))
+
+
+def remeasure(name):
+    """Measures a finished case again (after the metrics changed), keeping how it was run."""
+    study, case_name = name.split("/")
+    out = WORK / study / case_name
+    result = json.loads((out / "case.json").read_text())
+    measure(cases_of(study)[case_name], out, result)
+    (out / "case.json").write_text(json.dumps(result, indent=2))
+
+
+def measure(c, out, result):
+    """solve.json's figures, rkpost, and the case's own metrics into result."""
+    if (out / "solve.json").exists():
+        s = json.loads((out / "solve.json").read_text())
+        result.update({k: s[k] for k in ("wall_s", "setup_s", "steps", "particles", "integration_points",
+                                         "ns_per_point_update", "energy_error", "peak_memory_mb_max_rank")})
+    result["prep_s"] = json.loads((out / "prep.json").read_text()).get("wall_s")
+    if (out / "results").exists():
+        run([BIN / "rkpost", out, "--quiet"], check=False)
+    if (out / "vtk" / "case.pvd").exists():
+        if c.scene.startswith("taylor_bar/"):
+            m = taylor_metrics.metrics(out)
+            result.update(m)
+            result["error"] = sum(abs(m[k] / v - 1) for k, v in TAYLOR_REF.items())
+        elif c.scene == THIN_WALL:  # no reference: whether it holds together, its height, its strain
+            m = taylor_metrics.metrics(out)
+            result.update({k: m[k] for k in ("finite", "final_length_mm", "max_eq_plastic_strain")})
+        else:
+            u = upsetting_check.check(out)
+            result["force_errors"] = {f"{100 * f['reduction']:.0f}%": f["error"] for f in u["force"]}
+            result["error"] = max(abs(f["error"]) for f in u["force"]) if u["force"] else None
+            result["diameter_error"] = u["diameter_error"]
+        if result["verdict"] == "completed" and not result.get("finite", True):
+            result["verdict"] = "NON-FINITE OUTPUT"
 
 
 def fmt(v, digits=4):
@@ -299,11 +331,15 @@ def fmt(v, digits=4):
 
 
 def report(study):
-    rows = [json.loads((WORK / study / c.name / "case.json").read_text()) for c in STUDIES[study]()]
+    done = [WORK / study / c.name / "case.json" for c in STUDIES[study]()]
+    rows = [json.loads(p.read_text()) for p in done if p.exists()]
+    pending = [p.parent.name for p in done if not p.exists()]  # `studies.py report` by hand while cases run
     out = RESULTS / study
     out.mkdir(parents=True, exist_ok=True)
     keys = ["label", "verdict", "ranks", "particles", "steps", "wall_s", "ns_per_point_update", "energy_error",
             "footprint_radius_mm", "final_length_mm", "max_eq_plastic_strain", "error", "diameter_error", "message"]
+    if study == "convergence":  # the rim's radius at fixed heights above the wall (scripts/taylor_metrics.py)
+        keys[-1:-1] = ["radius_0.1mm_mm", "radius_0.2mm_mm", "max_radius_mm"]
     with open(out / "cases.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["case"] + keys)
@@ -320,6 +356,12 @@ def report(study):
     if notes:
         md += ["", "Diagnostics (the message each stopped or refused run gave):", ""]
         md += [f"- {r['label']}: `{r['message'][:400]}`" for r in notes]
+    if pending:
+        md += ["", f"Not finished when this report was written: {', '.join(pending)}."]
+    elsewhere = [r for r in rows if r.get("solved_elsewhere")]
+    if elsewhere:  # studies.py adopt: wall times from another machine or rank count
+        md += ["", "Solved elsewhere (the answer does not depend on the rank count; the wall time is that machine's):", ""]
+        md += [f"- {r['case']}: {r['solved_elsewhere']}" for r in elsewhere]
     extra = globals().get(f"report_{study}")
     if extra:
         md += extra(rows, out)
@@ -342,17 +384,23 @@ def observed_order(rows, key):
 
 def report_convergence(rows, out):
     tay = [r for r in rows if r["case"].startswith("taylor") and r.get("footprint_radius_mm")]
+    series = {name: [r for r in tay if r.get("series", "gauss") == name] for name in ("gauss", "nodal")}
     ups = [r for r in rows if r["case"].startswith("upsetting") and r.get("error") is not None]
     fig, ax = plt.subplots(1, 2, figsize=(10, 4))
-    if tay:
-        for key in TAYLOR_REF:
-            ax[0].loglog([r["h"] for r in tay], [abs(r[key] / TAYLOR_REF[key] - 1) + 1e-6 for r in tay], "o-", label=key)
+    for name, rs in series.items():
+        for key, ref in (*TAYLOR_REF.items(), ("radius_0.2mm_mm", TAYLOR_REF["footprint_radius_mm"])):
+            if rs and all(key in r for r in rs):
+                ax[0].loglog([r["h"] for r in rs], [abs(r[key] / ref - 1) + 1e-6 for r in rs],
+                             "o-" if name == "gauss" else "^--", label=f"{key} ({name})")
     if ups:
         ax[0].loglog([r["h"] for r in ups], [r["error"] for r in ups], "s-", label="upsetting force (max error)")
     ax[0].set_xlabel("spacing h (mm)")
     ax[0].set_ylabel("relative error")
-    ax[0].legend(fontsize=8)
-    ax[1].loglog([r["particles"] for r in tay], [r["wall_s"] for r in tay], "o-", label="Taylor bar, wall time")
+    ax[0].legend(fontsize=7)
+    for name, rs in series.items():
+        if rs:
+            ax[1].loglog([r["particles"] for r in rs], [r["wall_s"] * r["ranks"] for r in rs], "o-" if name == "gauss" else "^--",
+                         label=f"Taylor bar, {name} integration: wall time x ranks")
     ax[1].set_xlabel("particles")
     ax[1].set_ylabel("wall time (s)")
     ax[1].legend(fontsize=8)
@@ -360,8 +408,10 @@ def report_convergence(rows, out):
     fig.savefig(out / "convergence.png", dpi=120)
     plt.close(fig)
     lines = ["", "![convergence](convergence.png)", ""]
-    for key in TAYLOR_REF:
-        lines.append(f"Observed order of {key} (at h, from three successive h): {', '.join(observed_order(tay, key)) or '-'}")
+    for name, rs in series.items():
+        for key in (*TAYLOR_REF, "radius_0.2mm_mm"):
+            lines.append(f"Observed order of {key}, {name} integration (at h, from three successive h): "
+                         f"{', '.join(observed_order(rs, key)) or '-'}")
     return lines
 
 
@@ -441,6 +491,9 @@ def report_scaling(rows, out):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3 or sys.argv[1] not in ("plan", "prep", "solve", "report"):
+    if sys.argv[1:2] == ["adopt"] and len(sys.argv) in (4, 5):
+        adopt(sys.argv[2], Path(sys.argv[3]).resolve(), *sys.argv[4:])
+    elif len(sys.argv) != 3 or sys.argv[1] not in ("plan", "prep", "solve", "report", "remeasure"):
         sys.exit(__doc__)
-    {"plan": plan, "prep": prep, "solve": solve, "report": report}[sys.argv[1]](sys.argv[2])
+    else:
+        {"plan": plan, "prep": prep, "solve": solve, "report": report, "remeasure": remeasure}[sys.argv[1]](sys.argv[2])
