@@ -445,8 +445,8 @@ def report_tradeoffs(rows, out):
     picks = {"fast": usable[0], "accurate": min(front, key=lambda i: pts[i][0])}
     picks["balanced"] = min(usable, key=lambda i: (pts[i][0] / max(p[0] for p in pts) + 1e-9) *
                             (pts[i][1] / max(p[1] for p in pts)))
-    for name, i in picks.items():
-        ax.annotate(name, (pts[i][1], pts[i][0]), xytext=(10, 10), textcoords="offset points", color="red",
+    for k, (name, i) in enumerate(picks.items()):  # staggered, so picks close together stay readable
+        ax.annotate(name, (pts[i][1], pts[i][0]), xytext=(10, 10 + 14 * k), textcoords="offset points", color="red",
                     arrowprops={"arrowstyle": "->", "color": "red"})
     ax.set_xscale("log")
     ax.set_yscale("log")
