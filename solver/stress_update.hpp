@@ -5,7 +5,8 @@
 //   tau_eff = dev(tau(Fbar)) + J p_c I,   p_c = sum_g w_g tr(tau_g)/3 / sum_g w_g J_g  (per cell),
 //   P = tau_eff F^{-T},
 // so that sum_g w_g P : dF equals the rate of the stored energy plus dissipation (energy closes).
-// The points of a cell go through the material update kLanes at a time (material/lanes.hpp).
+// The points of a cell go through the material update kLanes at a time (material/lanes.hpp); without
+// F-bar (volumetric: none, one point per cell, nodal integration) kLanes consecutive points at a time.
 #pragma once
 #include "model.hpp"
 #include "state.hpp"
