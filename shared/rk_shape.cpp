@@ -1,6 +1,7 @@
 #include "rk_shape.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <cmath>
 
 namespace rk {
@@ -69,6 +70,13 @@ RkResult shape(const double x[3], std::span<const std::int32_t> nb, const RkPart
   result.rcond = D.maxCoeff() > 0 ? D.minCoeff() / D.maxCoeff() : 0.0;
   if (ldlt.info() != Eigen::Success || !(result.rcond > 1e-10)) return result;
   result.regular = true;
+  {  // the weighted covariance of the neighbours' offsets, from M's linear block (the basis is centred at x)
+    Eigen::Matrix3d C;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) C(i, j) = M(1 + i, 1 + j) / M(0, 0) - M(0, 1 + i) * M(0, 1 + j) / (M(0, 0) * M(0, 0));
+    const Eigen::Vector3d lambda = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C, Eigen::EigenvaluesOnly).eigenvalues();
+    result.spread = lambda(2) > 0 ? std::max(0.0, lambda(0)) / lambda(2) : 0.0;
+  }
 
   Vec e0 = Vec::Zero();
   e0(0) = 1;

@@ -2,10 +2,11 @@
 // shapes of t = 0; where the material shears hard (back extrusion: the metal turning the punch
 // corner) the supports become thin slivers that no longer hold the material together. An update
 // makes the current configuration the new reference: particles and integration points move to where
-// the material they sit in is, x = X + u^h(X) (the points keep their t = 0 volumes as weights), the
+// the material they sit in is, x = X + u^h(X) (the points keep their t = 0 volumes as weights; one
+// the map carries into a die or through a wall is put back onto its surface), the
 // particles take the material's velocity v^h(X_I) (the kinetic energy this smooths away is booked as
-// update_work), the shape functions are rebuilt there on supports of the t = 0 size grown where a
-// moment matrix would degenerate, and the plastic state is pushed forward (C_p^-1 <- Fbar C_p^-1
+// update_work), the shape functions are rebuilt there on supports of the t = 0 size, grown once
+// where the particles surround a point poorly, and the plastic state is pushed forward (C_p^-1 <- Fbar C_p^-1
 // Fbar^T, so the next stress update is unchanged). Masses and stored energies are untouched.
 //
 // Parallel: the points stay on their rank; the rank's local particles are found again with rkprep's
@@ -27,9 +28,12 @@ double largest_strain_since_update(const Model& md, const State& st);
 // Puts owned particle I's new reference position x (3) where it may be: onto its essential-BC
 // faces, onto the rigid walls and dies it touches, out of those it would be inside.
 using Projection = std::function<void(std::size_t I, double* x)>;
+// Moves an integration point's new reference position x (3) out of the walls and dies it is inside.
+using KeepOut = std::function<void(double* x)>;
 
 // The update at the current state (collective).
-void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm, const Projection& project);
+void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm, const Projection& project,
+                      const KeepOut& keep_out);
 
 // Rebuilds this rank's model on the reference positions X + d^ref and moves the particle state onto
 // the new local particles. Reads only the owned particles' X, d, v, d^ref and md.point_X, so it also

@@ -191,7 +191,11 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
         for (const auto& w : scene.rigid_walls) project_onto_wall(w, c, x);
         dies->project(st.t, c, x);
       };
-      collectively(comm, [&] { return update_reference(md, st, scene, comm, project), 0; });
+      const auto keep_out = [&](double* x) {
+        for (const auto& w : scene.rigid_walls) project_onto_wall(w, x, x);
+        dies->push_out(st.t, x);
+      };
+      collectively(comm, [&] { return update_reference(md, st, scene, comm, project, keep_out), 0; });
       rebind();
       update_due = false;
       timer.stop(kReference);

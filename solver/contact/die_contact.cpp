@@ -83,6 +83,17 @@ void DieContact::project(double t, const double* c, double* x) const {
   }
 }
 
+void DieContact::push_out(double t, double* x) const {
+  for (std::size_t k = 0; k < dies_.size(); ++k) {
+    const DieMotion& mo = dies_[k].motion;
+    double y[3];
+    for (int i = 0; i < 3; ++i) y[i] = x[i] - mo.stroke(t) * mo.direction[i];
+    const DieHit hit = search_[k]->nearest(y);
+    if (hit.found && hit.gap < 0)
+      for (int i = 0; i < 3; ++i) x[i] -= hit.gap * hit.normal[i];
+  }
+}
+
 void DieContact::box(const double part_lo[3], const double part_hi[3], double t, double lo[3], double hi[3]) const {
   for (int d = 0; d < 3; ++d) lo[d] = part_lo[d], hi[d] = part_hi[d];
   for (std::size_t k = 0; k < dies_.size(); ++k) {

@@ -44,6 +44,9 @@ class DieContact {
   // contact stays at c (its contact force does not jump), one that is not is moved out of any die
   // it would be inside.
   void project(double t, const double* c, double* x) const;
+  // Moves x out of any die it is inside, onto the die's surface (a reference update's integration
+  // points: the field between the contact-held coefficients can reach past a die).
+  void push_out(double t, double* x) const;
 
   // The box the part may move in: its initial box joined with every die's box at time t, grown by a
   // quarter of its largest side. A particle outside has left the tools (a health check).

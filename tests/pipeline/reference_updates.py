@@ -1,6 +1,6 @@
 """Reference-configuration updates (issue 4; solver/reference_update.hpp) on the Taylor bar:
 (1) at the seed's resolution the footprint radius and final length stay within 8 % and 2 % of the
-total-Lagrangian run (measured -6.5 % and +1.0 %: the updated discretization is not yet as
+total-Lagrangian run (measured -4.1 % and +0.9 %: the updated discretization is not yet as
 accurate as the total-Lagrangian one on this bar, see README), with
 several updates, in fewer steps (the stable step no longer falls with the points' stretch), and
 the energy balance holds; on a coarse bar (2) 1, 2 and 3 ranks give bitwise the same positions, velocities and
