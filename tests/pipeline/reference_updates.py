@@ -37,8 +37,8 @@ def last_frame(case):
 
 
 # (1) accuracy against the total-Lagrangian run, at the seed's resolution (0.9 mm, 1369 particles),
-# at CFL 0.5, where the bounds were measured; at the default 0.9 the updates smooth away more of the
-# kinetic energy (10.3 % against 6.3 %; r_f -5.0 %, L_f +1.8 %), README "Reference-configuration updates"
+# at CFL 0.5, where the bounds were measured; at the default 0.9 the updates smooth away about as
+# much kinetic energy (5.8 % against 5.9 %; r_f -4.7 %, L_f +0.9 %), README "Reference-configuration updates"
 tl_case, tl = run("tl", 2, ["time.cfl=0.5"], spacing=[])
 up_case, up = run("updated", 2, [updates, "time.cfl=0.5"], spacing=[])
 a, b = taylor_metrics.metrics(tl_case), taylor_metrics.metrics(up_case)
