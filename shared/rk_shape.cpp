@@ -70,13 +70,6 @@ RkResult shape(const double x[3], std::span<const std::int32_t> nb, const RkPart
   result.rcond = D.maxCoeff() > 0 ? D.minCoeff() / D.maxCoeff() : 0.0;
   if (ldlt.info() != Eigen::Success || !(result.rcond > 1e-10)) return result;
   result.regular = true;
-  {  // the weighted covariance of the neighbours' offsets, from M's linear block (the basis is centred at x)
-    Eigen::Matrix3d C;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) C(i, j) = M(1 + i, 1 + j) / M(0, 0) - M(0, 1 + i) * M(0, 1 + j) / (M(0, 0) * M(0, 0));
-    const Eigen::Vector3d lambda = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C, Eigen::EigenvaluesOnly).eigenvalues();
-    result.spread = lambda(2) > 0 ? std::max(0.0, lambda(0)) / lambda(2) : 0.0;
-  }
 
   Vec e0 = Vec::Zero();
   e0(0) = 1;
@@ -110,6 +103,26 @@ RkResult rk_shape(const double x[3], std::span<const std::int32_t> neighbours, c
                   Kernel kernel, Basis basis_kind, double* N, double* dN) {
   return basis_kind == Basis::quadratic ? shape<10>(x, neighbours, p, kernel, N, dN)
                                         : shape<4>(x, neighbours, p, kernel, N, dN);
+}
+
+double neighbour_spread(const double x[3], std::span<const std::int32_t> neighbours, const RkParticles& p,
+                        Kernel kernel) {
+  double sw = 0;
+  Eigen::Vector3d s1 = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d s2 = Eigen::Matrix3d::Zero();
+  for (auto I : neighbours) {
+    const Eigen::Vector3d d(x[0] - p.X[3 * I], x[1] - p.X[3 * I + 1], x[2] - p.X[3 * I + 2]);
+    double phi, dphi;
+    window(kernel, d.norm() / p.radius[I], phi, dphi);
+    if (phi <= 0) continue;
+    const double w = phi * p.volume[I];
+    sw += w, s1 += w * d, s2 += w * d * d.transpose();
+  }
+  if (!(sw > 0)) return 0.0;
+  const Eigen::Vector3d mean = s1 / sw;
+  const Eigen::Matrix3d C = s2 / sw - mean * mean.transpose();
+  const Eigen::Vector3d lambda = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C, Eigen::EigenvaluesOnly).eigenvalues();
+  return lambda(2) > 0 ? std::max(0.0, lambda(0)) / lambda(2) : 0.0;
 }
 
 }  // namespace rk

@@ -24,16 +24,18 @@ struct RkParticles {  // the particle data a shape function needs (SoA views)
 struct RkResult {
   bool regular = false;  // false: moment matrix singular (too few neighbours in the support)
   double rcond = 0;      // reciprocal condition estimate of the scaled moment matrix
-  // How evenly the neighbours surround x, whatever their support sizes: the smallest over the largest
-  // eigenvalue of the kernel-weighted covariance of their offsets (near 1 inside a lattice, a third
-  // or more at its faces and corners, near 0 where they are flat or on a line). The pivot ratio above
-  // also moves with the largest support among them.
-  double spread = 0;
 };
 
 // Evaluates N_I and grad N_I at x for the particles in `neighbours` (phi_a(x - X_I) > 0 expected).
 // N has one entry per neighbour, dN three (d/dX, d/dY, d/dZ) per neighbour.
 RkResult rk_shape(const double x[3], std::span<const std::int32_t> neighbours, const RkParticles& p,
                   Kernel kernel, Basis basis, double* N, double* dN);
+
+// How evenly the neighbours surround x, whatever their support sizes: the smallest over the largest
+// eigenvalue of the kernel-weighted (phi V) covariance of their offsets. Near 1 inside a lattice, a
+// third or more at its faces, edges and corners, near 0 where they are flat or on a line; free of
+// the support scale, unlike RkResult::rcond (its basis is scaled by the largest support around x).
+double neighbour_spread(const double x[3], std::span<const std::int32_t> neighbours, const RkParticles& p,
+                        Kernel kernel);
 
 }  // namespace rk

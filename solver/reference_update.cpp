@@ -61,21 +61,21 @@ std::vector<std::vector<std::int32_t>> gather_lists(const std::vector<std::int32
 // Support spacings on the new reference. Spheres of the t = 0 size keep the number of particles
 // per support (plastic flow keeps volume), but where the material has stretched (the hoop direction
 // of a flange) a point can lose the particles on one side and its moment matrix degenerates. So:
-// start from h_I at t = 0; every point whose neighbours surround it poorly (spread below kPoor,
-// rk_shape.hpp: a decade below the worst point of a fresh lattice, 0.3) grows by kGrow the spacing of
+// start from h_I at t = 0; every point whose neighbours surround it poorly (neighbour_spread below
+// kPoor, a decade below the worst point of a fresh lattice, 0.3) grows by kGrow the spacing of
 // the particles within kReach supports of it, once. Once: the growth must not feed on itself. With
 // the pivot ratio of the moment matrix as the measure and rounds until no point was poor, a grown
 // support lowered the ratio of every point it reached (the ratio falls with the largest support
 // around a point), those grew theirs, and at one update of back extrusion every support in the billet
-// became 6x its size: the discretization blurred and the punch lost its contacts. The points are
+// became 6x its size: the discretization blurred and the punch lost its contacts (points the update
+// had carried into the dies, one-sided, set it off; they are kept out now). The points are
 // tested on their ranks and the grown particles are shared, so every rank count grows the same ones.
 std::vector<double> conditioned_spacing(const Model& md, const Scene& scene, const std::vector<double>& Xr,
                                         const std::vector<double>& volume, std::vector<double> spacing, const Comm& comm) {
   constexpr double kPoor = 0.03, kGrow = 1.25, kReach = 1.5;
   const std::size_t total = spacing.size();
   const Kernel kernel = parse_kernel(scene.discretization.kernel);
-  const Basis basis = parse_basis(scene.discretization.basis);
-  std::vector<double> radius(total), reach(total), N, dN;
+  std::vector<double> radius(total), reach(total);
   std::vector<std::int32_t> found, grow;
   for (std::size_t I = 0; I < total; ++I) radius[I] = scene.discretization.dilation * spacing[I], reach[I] = kReach * radius[I];
   const NeighbourGrid grid(Xr.data(), radius.data(), total), near(Xr.data(), reach.data(), total);
@@ -83,8 +83,7 @@ std::vector<double> conditioned_spacing(const Model& md, const Scene& scene, con
   for (std::size_t g = 0; g < md.m; ++g) {
     found.clear();
     grid.covering(&md.point_X[3 * g], found);
-    N.resize(found.size()), dN.resize(3 * found.size());
-    if (rk_shape(&md.point_X[3 * g], found, particles, kernel, basis, N.data(), dN.data()).spread >= kPoor) continue;
+    if (neighbour_spread(&md.point_X[3 * g], found, particles, kernel) >= kPoor) continue;
     found.clear();
     near.covering(&md.point_X[3 * g], found);
     grow.insert(grow.end(), found.begin(), found.end());
