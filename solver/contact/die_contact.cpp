@@ -70,17 +70,15 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
 void DieContact::project(double t, const double* c, double* x) const {
   for (std::size_t k = 0; k < dies_.size(); ++k) {
     const DieMotion& mo = dies_[k].motion;
-    const double stroke = mo.stroke(t);
-    double yc[3], yx[3];
-    for (int i = 0; i < 3; ++i) yc[i] = c[i] - stroke * mo.direction[i], yx[i] = x[i] - stroke * mo.direction[i];
-    const DieHit now = search_[k]->nearest(yc), moved = search_[k]->nearest(yx);
+    double y[3];
+    for (int i = 0; i < 3; ++i) y[i] = c[i] - mo.stroke(t) * mo.direction[i];
+    const DieHit now = search_[k]->nearest(y);
     if (now.found && now.gap < 0) {  // in contact: it stays where it is
       for (int i = 0; i < 3; ++i) x[i] = c[i];
       return;
     }
-    if (moved.found && moved.gap < 0)
-      for (int i = 0; i < 3; ++i) x[i] -= moved.gap * moved.normal[i];
   }
+  push_out(t, x);
 }
 
 void DieContact::push_out(double t, double* x) const {
