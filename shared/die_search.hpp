@@ -27,6 +27,7 @@ class DieSearch {
   // The closest point among the triangles within the margin of x (no allocation).
   DieHit nearest(const double x[3]) const;
   std::size_t triangles() const { return normal_.size() / 3; }
+  double margin() const { return margin_; }  // a point nearest() does not find is farther than this
 
  private:
   const DieSurface& s_;

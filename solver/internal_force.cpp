@@ -7,9 +7,9 @@
 
 namespace rk {
 
-int force_headroom(const Model& md, int extra, const Comm& comm) {
+int force_headroom(const Model& md, int per_column, int extra, const Comm& comm) {
   std::vector<Fixed> terms(md.n, 0);
-  for (auto k = md.nbr_offsets.front(); k < md.nbr_offsets.back(); ++k) ++terms[std::size_t(md.nbr[k])];
+  for (auto k = md.nbr_offsets.front(); k < md.nbr_offsets.back(); ++k) terms[std::size_t(md.nbr[k])] += per_column;
   OverlapExchange(md, 1).sum(terms);
   double most = terms.empty() ? 0.0 : double(*std::max_element(terms.begin(), terms.end()));
   comm.max(&most, 1);

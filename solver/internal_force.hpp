@@ -13,9 +13,11 @@
 namespace rk {
 
 // The fixed-point headroom (fixed_point.hpp) of sums over this model's points and neighbours: the
-// most contributions any particle receives from the points of ALL ranks, plus `extra` each (die
-// contacts), so it does not depend on the partition. Collective; set-up only (allocates).
-int force_headroom(const Model& md, int extra, const Comm& comm);
+// most contributions any particle receives from the points of ALL ranks, `per_column` from each of
+// its columns (1 + the dies: a point's contact force is spread over its columns too), plus `extra`
+// (the particle's own die contacts), so it does not depend on the partition. Collective; set-up
+// only (allocates).
+int force_headroom(const Model& md, int per_column, int extra, const Comm& comm);
 
 void clear_internal_force(State& st);
 void add_internal_force(const Model& md, State& st, const FixedScale& scale, std::span<const std::int32_t> points);

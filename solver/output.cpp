@@ -72,7 +72,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
   }
   comm.max(bound, kProjected);
   FixedScale scale[kProjected];
-  if (headroom_ < 0) headroom_ = force_headroom(md, 0, comm);
+  if (headroom_ < 0) headroom_ = force_headroom(md, 1, 0, comm);
   for (int c = 0; c < kProjected; ++c) scale[c] = FixedScale::for_bound(bound[c], headroom_);
   std::fill(partial_.begin(), partial_.end(), Fixed(0));
   for (std::size_t g = 0; g < md.m; ++g)

@@ -26,7 +26,7 @@ namespace rk {
 double largest_strain_since_update(const Model& md, const State& st);
 
 // Puts owned particle I's new reference position x (3) where it may be: onto its essential-BC
-// faces, onto the rigid walls and dies it touches, out of those it would be inside.
+// faces and the rigid walls it touches, out of the walls and dies it would be inside.
 using Projection = std::function<void(std::size_t I, double* x)>;
 // Moves an integration point's new reference position x (3) out of the walls and dies it is inside.
 using KeepOut = std::function<void(double* x)>;

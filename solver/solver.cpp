@@ -59,7 +59,7 @@ std::string describe_particle(const Model& md, const State& st, std::int32_t I) 
 std::vector<std::string> history_columns(const Scene& scene) {
   std::vector<std::string> c{"time",         "dt",          "kinetic",      "internal",      "plastic_work",
                              "external_work", "contact_work", "energy_error", "friction_work", "contacts",
-                             "max_penetration", "kinetic_internal_ratio", "volume_change", "ebc_error", "update_work"};
+                             "point_contacts", "max_penetration", "kinetic_internal_ratio", "volume_change", "ebc_error", "update_work"};
   for (const auto& w : scene.rigid_walls) c.push_back(w.name + ".force");
   for (const auto& d : scene.dies)
     for (const char* q : {".stroke", ".force", ".fx", ".fy", ".fz", ".work"}) c.push_back(d.name + q);
@@ -122,7 +122,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   std::optional<OverlapExchange> exchange;
   exchange.emplace(md, 3);
   const int die_count = int(md.dies.size());
-  int headroom = force_headroom(md, die_count, comm);  // of the fixed-point force sums
+  int headroom = force_headroom(md, 1 + die_count, die_count, comm);  // of the fixed-point force sums
   std::vector<double> v_old(st.v.size());
   // A reference update changes the rank's local particles: what is sized by them is rebuilt.
   auto rebind = [&] {
@@ -131,7 +131,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     dies = std::make_unique<DieContact>(md, scene, md.dies);
     dies->totals() = totals;
     exchange.emplace(md, 3);
-    headroom = force_headroom(md, die_count, comm);
+    headroom = force_headroom(md, 1 + die_count, die_count, comm);
     results = collectively(comm, [&] { return std::make_unique<ResultWriter>(opt.case_dir, md, results->frames()); });
     v_old.assign(st.v.size(), 0.0);
   };
@@ -144,7 +144,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   std::vector<double> row(columns.size(), 0.0), wall_force(scene.rigid_walls.size(), 0.0);
   // Global sums for a history row, laid out as: the scalars below, one force per rigid wall, then
   // (contacts, fx, fy, fz, press work) per die, then (fx, fy, fz) per fixed or prescribed face.
-  enum { kContacts, kSprings, kFriction, kDieWork, kVolume, kEbcWork, kUpdateWork, kScalars };
+  enum { kContacts, kPointContacts, kSprings, kFriction, kDieWork, kVolume, kEbcWork, kUpdateWork, kScalars };
   std::vector<double> sums(kScalars + scene.rigid_walls.size() + 5 * scene.dies.size() + ebc->reactions().size());
   double max_ebc_error = 0;
   double part_lo[3] = {1e300, 1e300, 1e300}, part_hi[3] = {-1e300, -1e300, -1e300};  // the part's initial box
@@ -189,7 +189,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
         const double c[3] = {md.X[3 * I] + st.u[3 * I], md.X[3 * I + 1] + st.u[3 * I + 1], md.X[3 * I + 2] + st.u[3 * I + 2]};
         ebc->project(md, I, st.t, x);
         for (const auto& w : scene.rigid_walls) project_onto_wall(w, c, x);
-        dies->project(st.t, c, x);
+        dies->push_out(st.t, x);
       };
       const auto keep_out = [&](double* x) {
         for (const auto& w : scene.rigid_walls) project_onto_wall(w, x, x);
@@ -260,7 +260,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     const FixedScale scale = FixedScale::for_bound(red[1], headroom);
     clear_internal_force(st);
     add_internal_force(md, st, scale, md.boundary_points);
-    dies->add_to(st, scale);  // contact forces of the owned particles, once over all ranks
+    dies->add_to(md, st, scale);  // die contact forces of the owned particles and points, once over all ranks
     timer.stop(kInternalForce);
     exchange->start(st.partial);  // the overlap particles' partials travel ...
     timer.stop(kExchange);
@@ -284,7 +284,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       wall_force[w] = r.normal_force;
       contacts += r.contacts;
     }
-    dies->account(st, v_old, dt_avg, st.t);
+    dies->account(md, st, v_old, dt_avg, st.t);
     if (has_gravity)  // work of the body force on the owned particles
       for (std::size_t I = 0; I < md.n; ++I)
         if (md.owned[I])
@@ -306,6 +306,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
         double* out = &sums[die0 + 5 * d];
         out[0] = double(t.contacts), out[1] = t.force[0], out[2] = t.force[1], out[3] = t.force[2], out[4] = t.press_work;
         sums[kContacts] += double(t.contacts);
+        sums[kPointContacts] += double(t.point_contacts);
         sums[kSprings] += t.spring_energy, sums[kFriction] += t.friction_work, sums[kDieWork] += t.contact_work;
         pen = std::max(pen, t.max_penetration);
       }
@@ -326,7 +327,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       if (st.t > 0.05 * t_end) max_ke_ratio = std::max(max_ke_ratio, ratio);
       std::size_t c = 0;
       for (double v : {st.t, dt, e.kinetic, e.internal, e.plastic, e.external, e.contact, last_error, sums[kFriction],
-                       sums[kContacts], pen, ratio, sums[kVolume] / volume0 - 1, worst[1], sums[kUpdateWork]})
+                       sums[kContacts], sums[kPointContacts], pen, ratio, sums[kVolume] / volume0 - 1, worst[1], sums[kUpdateWork]})
         row[c++] = v;
       for (std::size_t w = 0; w < walls; ++w) row[c++] = sums[kScalars + w];
       for (std::size_t d = 0; d < dies->size(); ++d) {
