@@ -32,6 +32,15 @@ void compute_deformation_gradient(const Model& md, State& st) {
   }
 }
 
+void point_position(const Model& md, const State& st, std::size_t g, double x[3]) {
+  const bool updated = !st.u_ref.empty();
+  for (int i = 0; i < 3; ++i) x[i] = md.point_X[3 * g + i];
+  for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
+    const std::size_t J = 3 * std::size_t(md.nbr[k]);
+    for (int i = 0; i < 3; ++i) x[i] += md.N[k] * (updated ? st.u[J + i] - st.u_ref[J + i] : st.u[J + i]);
+  }
+}
+
 void constrained_displacement(const Model& md, const State& st, std::size_t q, double uh[3]) {
   const bool updated = !st.u_ref.empty();
   const std::size_t I = 3 * std::size_t(md.ebc_particles[q]);

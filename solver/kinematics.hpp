@@ -9,6 +9,10 @@ namespace rk {
 
 void compute_deformation_gradient(const Model& md, State& st);
 
+// Integration point g's current position X_g + u^h(X_g) (the material's, from the reference point
+// and the displacement since the last reference update, d_J - d_J^ref).
+void point_position(const Model& md, const State& st, std::size_t g, double x[3]);
+
 // u^h at owned constrained particle q's reference position (its row md.ebc_*), from t = 0:
 // d_I^ref + sum_J N_J (d_J - d_J^ref) (d^ref = 0 before the first reference update).
 void constrained_displacement(const Model& md, const State& st, std::size_t q, double uh[3]);

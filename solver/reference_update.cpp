@@ -121,11 +121,8 @@ void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm
   if (st.u_ref.empty()) st.u_ref.assign(st.u.size(), 0.0), st.J_ref.assign(md.m, 1.0);
   for (std::size_t c = 0; c < md.cells; ++c)
     for (auto g = std::size_t(md.cell_points[c]); g < std::size_t(md.cell_points[c + 1]); ++g) {
-      double x[3] = {md.point_X[3 * g], md.point_X[3 * g + 1], md.point_X[3 * g + 2]};  // x_g = X_g + u^h(X_g)
-      for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
-        const std::size_t J = 3 * std::size_t(md.nbr[k]);
-        for (int i = 0; i < 3; ++i) x[i] += md.N[k] * (st.u[J + i] - st.u_ref[J + i]);
-      }
+      double x[3];  // x_g = X_g + u^h(X_g)
+      point_position(md, st, g, x);
       // Penalty contact lets the field reach a little past a die (and, at a wall, the field between
       // the held coefficients): a point carried there is put back onto the surface. Left inside, such
       // points strained against nothing (back extrusion, before the dies held the points too: 3.5 %

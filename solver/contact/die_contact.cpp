@@ -1,5 +1,7 @@
 #include "contact/die_contact.hpp"
 
+#include "kinematics.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -117,15 +119,6 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     }
   }
   return largest;
-}
-
-void DieContact::point_position(const Model& md, const State& st, std::size_t g, double x[3]) {
-  const bool updated = !st.u_ref.empty();
-  for (int i = 0; i < 3; ++i) x[i] = md.point_X[3 * g + i];
-  for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
-    const std::size_t J = 3 * std::size_t(md.nbr[k]);
-    for (int i = 0; i < 3; ++i) x[i] += md.N[k] * (updated ? st.u[J + i] - st.u_ref[J + i] : st.u[J + i]);
-  }
 }
 
 void DieContact::field_value(const Model& md, const std::vector<double>& a, std::size_t g, double out[3]) {

@@ -70,8 +70,7 @@ class DieContact {
     bool point;
     double normal_force[3], friction_force[3];
   };
-  // Point g's current position X_g + u^h(X_g), and the field of a (3 per particle) there.
-  static void point_position(const Model& md, const State& st, std::size_t g, double x[3]);
+  // The field of a (3 per particle) at point g.
   static void field_value(const Model& md, const std::vector<double>& a, std::size_t g, double out[3]);
   std::vector<Die> dies_;
   std::vector<DieSurface> surfaces_;
