@@ -41,14 +41,29 @@ void point_position(const Model& md, const State& st, std::size_t g, double x[3]
   }
 }
 
-void constrained_displacement(const Model& md, const State& st, std::size_t q, double uh[3]) {
+namespace {
+
+// d_I^ref + sum_k N[k] (d_J - d_J^ref) over the row cols[k0 .. k1)
+void row_displacement(const State& st, std::size_t I, const std::int32_t* cols, const double* N, std::int32_t k0,
+                      std::int32_t k1, double uh[3]) {
   const bool updated = !st.u_ref.empty();
-  const std::size_t I = 3 * std::size_t(md.ebc_particles[q]);
-  for (int i = 0; i < 3; ++i) uh[i] = updated ? st.u_ref[I + i] : 0.0;
-  for (auto k = md.ebc_offsets[q]; k < md.ebc_offsets[q + 1]; ++k) {
-    const std::size_t J = 3 * std::size_t(md.ebc_cols[k]);
-    for (int i = 0; i < 3; ++i) uh[i] += md.ebc_N[k] * (updated ? st.u[J + i] - st.u_ref[J + i] : st.u[J + i]);
+  for (int i = 0; i < 3; ++i) uh[i] = updated ? st.u_ref[3 * I + i] : 0.0;
+  for (auto k = k0; k < k1; ++k) {
+    const std::size_t J = 3 * std::size_t(cols[k]);
+    for (int i = 0; i < 3; ++i) uh[i] += N[k] * (updated ? st.u[J + i] - st.u_ref[J + i] : st.u[J + i]);
   }
+}
+
+}  // namespace
+
+void constrained_displacement(const Model& md, const State& st, std::size_t q, double uh[3]) {
+  row_displacement(st, std::size_t(md.ebc_particles[q]), md.ebc_cols.data(), md.ebc_N.data(), md.ebc_offsets[q],
+                   md.ebc_offsets[q + 1], uh);
+}
+
+void material_displacement(const Model& md, const State& st, std::size_t I, double uh[3]) {
+  row_displacement(st, I, md.material_cols.data(), md.material_N.data(), md.material_offsets[I],
+                   md.material_offsets[I + 1], uh);
 }
 
 }  // namespace rk

@@ -132,6 +132,21 @@ std::vector<double> shortest_edges(const Model& md) {
   return h0;
 }
 
+// The owned particles' rows N_J(X_I): rkprep made the whole support of an owned particle local.
+void build_material_rows(Model& md, const LocalShapes& shapes) {
+  std::vector<double> dN;
+  md.material_offsets.assign(1, 0);
+  md.material_cols.clear(), md.material_N.clear();
+  for (std::size_t I = 0; I < md.n; ++I) {
+    const std::size_t k0 = md.material_cols.size();
+    if (md.owned[I] && !shapes.append(&md.Xr[3 * I], md.material_cols, md.material_N, dN).regular) {
+      md.material_cols.resize(k0), md.material_N.resize(k0);  // a particle left alone: its coefficient
+      md.material_cols.push_back(std::int32_t(I)), md.material_N.push_back(1.0);
+    }
+    md.material_offsets.push_back(std::int32_t(md.material_cols.size()));
+  }
+}
+
 }  // namespace
 
 Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<double>* initial_X) {
@@ -179,6 +194,7 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   bound_gradients(md);
 
   md.dies = sub.dies;
+  if (!md.dies.empty()) build_material_rows(md, shapes);
   md.neighbour_ranks = sub.neighbour_ranks;
   md.overlap = sub.overlap;
   std::vector<std::uint8_t> shared(md.n, 0);

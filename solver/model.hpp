@@ -36,6 +36,11 @@ struct Model {
   std::vector<std::int32_t> ebc_particles, ebc_offsets, ebc_cols;
   std::vector<double> ebc_N;
   std::vector<double> face_particles;  // owned particles per face (all_faces numbering)
+  // where dies hold the material (scenes with dies, die_contact.hpp): each owned particle's row
+  // N_J(X_I) (local J, CSR over the local particles; empty for the others; {I: 1} where the moment
+  // matrix is singular), for contact at u^h(X_I) and to show u^h(X_I) in the results
+  std::vector<std::int32_t> material_offsets, material_cols;
+  std::vector<double> material_N;
 
   // integration points, SoA; neighbours and shape data in CSR (point -> columns)
   std::size_t m = 0;

@@ -189,11 +189,9 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
         const double c[3] = {md.X[3 * I] + st.u[3 * I], md.X[3 * I + 1] + st.u[3 * I + 1], md.X[3 * I + 2] + st.u[3 * I + 2]};
         ebc->project(md, I, st.t, x);
         for (const auto& w : scene.rigid_walls) project_onto_wall(w, c, x);
-        dies->push_out(st.t, x);
       };
       const auto keep_out = [&](double* x) {
         for (const auto& w : scene.rigid_walls) project_onto_wall(w, x, x);
-        dies->push_out(st.t, x);
       };
       collectively(comm, [&] { return update_reference(md, st, scene, comm, project, keep_out), 0; });
       rebind();
@@ -301,13 +299,14 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       for (std::size_t g = 0; g < md.m; ++g) sums[kVolume] += md.weight[g] * st.total_J(g);
       for (std::size_t w = 0; w < walls; ++w) sums[kScalars + w] = wall_force[w];
       double pen = 0;
-      for (std::size_t d = 0; d < dies->size(); ++d) {
+      for (std::size_t d = 0; d < dies->totals().size(); ++d) {  // the dies, then the held symmetry planes
         const DieTotals& t = dies->totals()[d];
+        sums[kSprings] += t.spring_energy, sums[kFriction] += t.friction_work, sums[kDieWork] += t.contact_work;
+        if (d >= dies->size()) continue;
         double* out = &sums[die0 + 5 * d];
         out[0] = double(t.contacts), out[1] = t.force[0], out[2] = t.force[1], out[3] = t.force[2], out[4] = t.press_work;
         sums[kContacts] += double(t.contacts);
         sums[kPointContacts] += double(t.point_contacts);
-        sums[kSprings] += t.spring_energy, sums[kFriction] += t.friction_work, sums[kDieWork] += t.contact_work;
         pen = std::max(pen, t.max_penetration);
       }
       const std::size_t face0 = die0 + 5 * dies->size();

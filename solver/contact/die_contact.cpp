@@ -1,29 +1,39 @@
 #include "contact/die_contact.hpp"
 
-#include "kinematics.hpp"
-
 #include <algorithm>
 #include <cmath>
 
 namespace rk {
 
 DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<DieSurface>& surfaces)
-    : dies_(scene.dies), surfaces_(surfaces), totals_(scene.dies.size()), penalty_scale_(scene.contact.penalty_scale) {
+    : dies_(scene.dies), surfaces_(surfaces), penalty_scale_(scene.contact.penalty_scale) {
+  if (dies_.empty()) return;
   double hmax = 0;
   for (std::size_t I = 0; I < md.n; ++I)
-    if (md.owned[I]) slaves_.push_back(std::int32_t(I)), hmax = std::max(hmax, md.spacing[I]);
+    if (md.owned[I]) particles_.push_back(std::int32_t(I)), hmax = std::max(hmax, md.spacing[I]);
   // Penetrations stay far below half a spacing (the penalty is stiff); deeper ones would be missed.
   for (const auto& s : surfaces_) search_.push_back(std::make_unique<DieSearch>(s, 0.5 * hmax));
-  active_.reserve((slaves_.size() + md.m) * std::max<std::size_t>(1, dies_.size()));
-  clearance_.assign((slaves_.size() + md.m) * dies_.size(), 0.0);  // 0: looked up at the first step
+  for (SymmetryPlane plane : scene.symmetry_planes) {  // the normal toward this rank's material
+    double side = 0;
+    for (std::size_t I = 0; I < md.n; ++I)
+      for (int i = 0; i < 3; ++i) side += (md.Xr[3 * I + i] - plane.point[i]) * plane.normal[i];
+    if (side < 0)
+      for (double& c : plane.normal) c = -c;
+    planes_.push_back(plane);
+  }
+  totals_.resize(dies_.size() + (planes_.empty() ? 0 : 1));
+
+  const std::size_t slaves = particles_.size() + md.m;
+  mass_.resize(slaves), N_sum_.assign(slaves, 0.0), N_max_.assign(slaves, 0.0);
+  for (std::size_t s = 0; s < slaves; ++s) {
+    mass_[s] = s < particles_.size() ? md.mass[particles_[s]] : md.density * md.weight[s - particles_.size()];
+    const Row r = row(md, s);
+    for (std::int32_t k = 0; k < r.size; ++k) N_sum_[s] += std::abs(r.N[k]), N_max_[s] = std::max(N_max_[s], std::abs(r.N[k]));
+  }
+  const std::size_t obstacles = dies_.size() + planes_.size();
+  active_.reserve(slaves * obstacles);
+  clearance_.assign(slaves * obstacles, 0.0);  // 0: looked up at the first step
   stroke_last_.assign(dies_.size(), 0.0);
-  point_N_max_.assign(md.m, 0.0);
-  point_N_sum_.assign(md.m, 0.0);
-  for (std::size_t g = 0; g < md.m; ++g)
-    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
-      point_N_max_[g] = std::max(point_N_max_[g], std::abs(md.N[k]));
-      point_N_sum_[g] += std::abs(md.N[k]);
-    }
   for (const auto& sf : surfaces_) {
     double b[6] = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
     for (std::size_t v = 0; v < sf.vertices.size() / 3; ++v)
@@ -32,11 +42,38 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
   }
 }
 
+DieContact::Row DieContact::row(const Model& md, std::size_t s) const {
+  if (s < particles_.size()) {
+    const auto I = std::size_t(particles_[s]);
+    const auto k0 = md.material_offsets[I];
+    return {&md.material_cols[std::size_t(k0)], &md.material_N[std::size_t(k0)], md.material_offsets[I + 1] - k0};
+  }
+  const std::size_t g = s - particles_.size();
+  return {&md.nbr[std::size_t(md.nbr_offsets[g])], &md.N[std::size_t(md.nbr_offsets[g])], md.nbr_offsets[g + 1] - md.nbr_offsets[g]};
+}
+
+void DieContact::material_point(const Model& md, const State& st, std::size_t s, double x[3]) const {
+  const double* X = s < particles_.size() ? &md.Xr[3 * std::size_t(particles_[s])] : &md.point_X[3 * (s - particles_.size())];
+  const bool updated = !st.u_ref.empty();
+  const Row r = row(md, s);
+  for (int i = 0; i < 3; ++i) x[i] = X[i];
+  for (std::int32_t k = 0; k < r.size; ++k) {
+    const std::size_t J = 3 * std::size_t(r.cols[k]);
+    for (int i = 0; i < 3; ++i) x[i] += r.N[k] * (updated ? st.u[J + i] - st.u_ref[J + i] : st.u[J + i]);
+  }
+}
+
+void DieContact::material_value(const Model& md, const std::vector<double>& a, std::size_t s, double out[3]) const {
+  const Row r = row(md, s);
+  out[0] = out[1] = out[2] = 0;
+  for (std::int32_t k = 0; k < r.size; ++k)
+    for (int i = 0; i < 3; ++i) out[i] += r.N[k] * a[3 * std::size_t(r.cols[k]) + i];
+}
+
 double DieContact::compute(const Model& md, const State& st, double t, double dt) {
   active_.clear();
   if (dies_.empty()) return 0;
-  // How far any local coefficient moved since the last call: a particle moved at most that, a point
-  // at most sum_J |N_J(X_g)| times that.
+  // How far any local coefficient moved since the last call: a slave moved at most sum_J |N_J| times that.
   double moved = 0;
   if (u_last_.size() == st.u.size()) {
     double worst = 0;
@@ -48,94 +85,73 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     moved = std::sqrt(worst);
   }
   u_last_ = st.u;  // sized at the first call
-  const std::size_t slots = slaves_.size() + md.m;
+  const std::size_t slaves = particles_.size() + md.m;
   double largest = 0;
-  for (std::size_t k = 0; k < dies_.size(); ++k) {
-    const DieMotion& mo = dies_[k].motion;
-    const double stroke = mo.stroke(t), rate = mo.rate(t), die_moved = std::abs(stroke - stroke_last_[k]);
-    stroke_last_[k] = stroke;
-    const double clear = 1e-6 * search_[k]->margin();  // only a slave at least this far out is skipped
-    DieTotals& tot = totals_[k];
+  for (auto& tot : totals_) {
     tot.force[0] = tot.force[1] = tot.force[2] = 0;
     tot.max_penetration = 0;
     tot.spring_energy = 0;
     tot.contacts = tot.point_contacts = 0;
-    // Slave `slot` at x (current) of mass m: its forces, if it is inside the die. velocity(v) gives
-    // its velocity; share bounds the part of the force one column receives.
-    auto engage = [&](std::size_t slot, const double* x, double m, auto velocity, std::int32_t slave, bool point,
-                      double share) {
-      double y[3];
-      for (int i = 0; i < 3; ++i) y[i] = x[i] - stroke * mo.direction[i];
-      const DieHit hit = search_[k]->nearest(y);
-      clearance_[k * slots + slot] = hit.found ? std::max(hit.gap, 0.0) : search_[k]->margin();
-      if (!hit.found || hit.gap >= 0) return false;
-      const double depth = -hit.gap;
+  }
+  for (std::size_t k = 0; k < dies_.size() + planes_.size(); ++k) {
+    const bool die = k < dies_.size();
+    const DieMotion* mo = die ? &dies_[k].motion : nullptr;
+    const double stroke = die ? mo->stroke(t) : 0.0, rate = die ? mo->rate(t) : 0.0;
+    const double die_moved = die ? std::abs(stroke - stroke_last_[k]) : 0.0;
+    if (die) stroke_last_[k] = stroke;
+    const double mu = die ? dies_[k].friction : 0.0;
+    const double margin = search_[0]->margin();
+    const double clear = 1e-6 * margin;  // only a slave at least this far out is skipped
+    DieTotals& tot = totals_[die ? k : dies_.size()];
+    // The obstacle's closest point to x (current), in its own frame.
+    auto nearest = [&](const double* x) {
+      if (die) {
+        double y[3];
+        for (int i = 0; i < 3; ++i) y[i] = x[i] - stroke * mo->direction[i];
+        return search_[k]->nearest(y);
+      }
+      const SymmetryPlane& p = planes_[k - dies_.size()];
+      DieHit hit{true, 0, {p.normal[0], p.normal[1], p.normal[2]}};
+      for (int i = 0; i < 3; ++i) hit.gap += (x[i] - p.point[i]) * p.normal[i];
+      return hit;
+    };
+    for (std::size_t s = 0; s < slaves; ++s) {
+      double& c = clearance_[k * slaves + s];  // skipped while it cannot have reached the obstacle
+      c -= N_sum_[s] * moved + die_moved;
+      if (c > clear) continue;
+      double x[3];
+      material_point(md, st, s, x);
+      const DieHit hit = nearest(x);
+      c = hit.found ? std::max(hit.gap, 0.0) : margin;
+      if (!hit.found || hit.gap >= 0) continue;
+      const double depth = -hit.gap, m = mass_[s];
       const double kI = penalty_scale_ * m / (dt * dt);
-      Active a{slave, std::int32_t(k), point, {}, {}};
+      Active a{std::int32_t(s), std::int32_t(k), {}, {}};
       double vt[3], vn = 0;
-      velocity(vt);
+      material_value(md, st.v, s, vt);
       for (int i = 0; i < 3; ++i) {
         a.normal_force[i] = kI * depth * hit.normal[i];
-        vt[i] -= rate * mo.direction[i];
+        if (die) vt[i] -= rate * mo->direction[i];
         vn += vt[i] * hit.normal[i];
       }
       for (int i = 0; i < 3; ++i) vt[i] -= vn * hit.normal[i];
       const double fn = kI * depth, vt_norm = std::sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
-      const double mu = dies_[k].friction;
       if (mu > 0 && vt_norm > 0) {
-        const double stick = (point ? 0.5 : 1.0) * m * vt_norm / dt;  // stops (half) the sliding in one step
+        const double stick = (s < particles_.size() ? 1.0 : 0.5) * m * vt_norm / dt;  // stops (half) the sliding in one step
         const double f = std::min(stick, mu * fn);
         for (int i = 0; i < 3; ++i) a.friction_force[i] = -f * vt[i] / vt_norm;
       }
       for (int i = 0; i < 3; ++i) {
         tot.force[i] += a.normal_force[i] + a.friction_force[i];
-        largest = std::max(largest, share * std::abs(a.normal_force[i] + a.friction_force[i]));
+        largest = std::max(largest, N_max_[s] * std::abs(a.normal_force[i] + a.friction_force[i]));
       }
       tot.max_penetration = std::max(tot.max_penetration, depth);
       tot.spring_energy += 0.5 * kI * depth * depth;
+      (s < particles_.size() ? tot.contacts : tot.point_contacts) += 1;
       active_.push_back(a);
-      return true;
-    };
-    // Skipped while it cannot have reached the die since its last lookup.
-    auto clear_of_die = [&](std::size_t slot, double reach) {
-      double& c = clearance_[k * slots + slot];
-      c -= reach + die_moved;
-      return c > clear;
-    };
-    for (std::size_t s = 0; s < slaves_.size(); ++s) {
-      if (clear_of_die(s, moved)) continue;
-      const std::size_t I = std::size_t(slaves_[s]);
-      double x[3];
-      for (int i = 0; i < 3; ++i) x[i] = md.X[3 * I + i] + st.u[3 * I + i];
-      const auto velocity = [&](double* v) { for (int i = 0; i < 3; ++i) v[i] = st.v[3 * I + i]; };
-      tot.contacts += engage(s, x, md.mass[I], velocity, std::int32_t(I), false, 1.0);
-    }
-    for (std::size_t g = 0; g < md.m; ++g) {
-      if (clear_of_die(slaves_.size() + g, point_N_sum_[g] * moved)) continue;
-      double x[3];
-      point_position(md, st, g, x);
-      const auto velocity = [&](double* v) { field_value(md, st.v, g, v); };
-      tot.point_contacts += engage(slaves_.size() + g, x, md.density * md.weight[g], velocity, std::int32_t(g), true, point_N_max_[g]);
     }
   }
   return largest;
-}
-
-void DieContact::field_value(const Model& md, const std::vector<double>& a, std::size_t g, double out[3]) {
-  out[0] = out[1] = out[2] = 0;
-  for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
-    for (int i = 0; i < 3; ++i) out[i] += md.N[k] * a[3 * std::size_t(md.nbr[k]) + i];
-}
-
-void DieContact::push_out(double t, double* x) const {
-  for (std::size_t k = 0; k < dies_.size(); ++k) {
-    const DieMotion& mo = dies_[k].motion;
-    double y[3];
-    for (int i = 0; i < 3; ++i) y[i] = x[i] - mo.stroke(t) * mo.direction[i];
-    const DieHit hit = search_[k]->nearest(y);
-    if (hit.found && hit.gap < 0)
-      for (int i = 0; i < 3; ++i) x[i] -= hit.gap * hit.normal[i];
-  }
 }
 
 void DieContact::box(const double part_lo[3], const double part_hi[3], double t, double lo[3], double hi[3]) const {
@@ -152,37 +168,29 @@ void DieContact::box(const double part_lo[3], const double part_hi[3], double t,
 }
 
 void DieContact::add_to(const Model& md, State& st, const FixedScale& scale) const {
-  for (const auto& a : active_) {
-    double f[3];
-    for (int i = 0; i < 3; ++i) f[i] = a.normal_force[i] + a.friction_force[i];
-    if (!a.point) {
-      for (int i = 0; i < 3; ++i) st.partial[3 * std::size_t(a.slave) + i] -= scale.fixed(f[i]);
-      continue;
-    }
-    const std::size_t g = std::size_t(a.slave);  // f acts on the field at the point: N_J f on d_J
-    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
-      for (int i = 0; i < 3; ++i) st.partial[3 * std::size_t(md.nbr[k]) + i] -= scale.fixed(md.N[k] * f[i]);
+  for (const auto& a : active_) {  // f acts on the field at the slave: N_J f on d_J
+    const Row r = row(md, std::size_t(a.slave));
+    for (std::int32_t k = 0; k < r.size; ++k)
+      for (int i = 0; i < 3; ++i)
+        st.partial[3 * std::size_t(r.cols[k]) + i] -= scale.fixed(r.N[k] * (a.normal_force[i] + a.friction_force[i]));
   }
 }
 
 void DieContact::account(const Model& md, const State& st, const std::vector<double>& v_old, double dt_avg, double t) {
   for (const auto& a : active_) {
-    const DieMotion& mo = dies_[a.die].motion;
-    const double rate = mo.rate(t);
-    DieTotals& tot = totals_[a.die];
+    const bool die = std::size_t(a.obstacle) < dies_.size();
+    const double rate = die ? dies_[a.obstacle].motion.rate(t) : 0.0;
+    const double* direction = die ? dies_[a.obstacle].motion.direction.data() : nullptr;
+    DieTotals& tot = totals_[die ? std::size_t(a.obstacle) : dies_.size()];
     double before[3], after[3];
-    if (a.point) {
-      field_value(md, v_old, std::size_t(a.slave), before);
-      field_value(md, st.v, std::size_t(a.slave), after);
-    } else {
-      for (int i = 0; i < 3; ++i) before[i] = v_old[3 * a.slave + i], after[i] = st.v[3 * a.slave + i];
-    }
+    material_value(md, v_old, std::size_t(a.slave), before);
+    material_value(md, st.v, std::size_t(a.slave), after);
     for (int i = 0; i < 3; ++i) {
-      const double vbar = 0.5 * (before[i] + after[i]);
+      const double vbar = 0.5 * (before[i] + after[i]), die_v = die ? rate * direction[i] : 0.0;
       const double f = a.normal_force[i] + a.friction_force[i];
       tot.contact_work += dt_avg * f * vbar;
-      tot.press_work += dt_avg * f * rate * mo.direction[i];
-      tot.friction_work -= dt_avg * a.friction_force[i] * (vbar - rate * mo.direction[i]);
+      tot.press_work += dt_avg * f * die_v;
+      tot.friction_work -= dt_avg * a.friction_force[i] * (vbar - die_v);
     }
   }
 }

@@ -1,21 +1,29 @@
-// Contact of the workpiece with the moving rigid dies (seed 4.3), at two kinds of slave:
-// - every owned particle, at X_I + d_I (its coefficient), not only those on the initial surface: in
-//   forging the material folds and interior particles reach the dies;
-// - every integration point of this rank, at the material point X_g + u^h(X_g), the force spread as
-//   N_J(X_g) f onto the coefficients d_J. RK shape functions do not interpolate: with the
-//   coefficients alone held, the field between them reached 0.3-0.6 mm (a quarter of a spacing)
-//   into the punch corner of back extrusion, and the reference updates, which move the points to
-//   the field, squeezed that material back onto the surface: the cup lost 12 % of its volume.
+// Contact of the workpiece with the moving rigid dies (seed 4.3) and, in scenes with dies, with its
+// symmetry planes. The slaves are material points, each with its row of shape functions:
+// - every owned particle at X_I + u^h(X_I) (not at its coefficient X_I + d_I), not only those on
+//   the initial surface: in forging the material folds and interior particles reach the dies;
+// - every integration point of this rank at X_g + u^h(X_g);
+// a slave's contact force f acts on the field there, spread as N_J f onto the coefficients d_J.
+// RK shape functions do not interpolate: a die that held the coefficients let the field between and
+// at them reach into it (0.3-0.6 mm into back extrusion's punch corner with only the particles'
+// coefficients held; 2-20 um at the particles with the points held too), and each reference
+// update, which moves the material to the field, had to cut that layer off at the die surface:
+// back extrusion's cup lost 12 mm^3 per update (its wall ended at 88 % of its height). Held at the
+// field, the material is where the dies let it be, and an update leaves it there.
+// Symmetry planes are frictionless fixed planes for the same slaves: the nodal EBCs hold the
+// coefficients of the particles on a plane, not the field, and a die that presses the field near
+// a plane pushed it across (back extrusion's punch corner: integration points 4.8 mm past y = 0 at
+// 12 mm of stroke, then a singular moment matrix).
 // Normal: penalty k = penalty_scale * m / dt^2 on the penetration depth, m the particle's mass or the
-// point's rho w_g (tied to the stable step, so contact never shrinks it: sqrt(k/m) dt =
-// sqrt(penalty_scale) < 2). Tangential: Coulomb friction, stick when the force that stops the
-// relative tangential velocity in one step is within mu |f_n|, slip with mu |f_n| against the sliding
-// direction otherwise. A point's stick force stops half its sliding: a particle and the points around
-// it sample the same interface, and together they must not reverse it. A slave is looked up only
-// when its distance to the die at its last lookup, less how far it and the die have moved since,
-// may have run out (the same contacts as a lookup of every slave at every step). Computed by each
-// particle's and each point's OWNER only; the forces enter the fixed-point partial sums, so shared
-// copies receive them exactly once.
+// point's rho w_g (tied to the stable step, so contact never shrinks it: spread over a row, it
+// stiffens the coefficients by sum_J N_J^2 k / m_J, about 0.3 k / m). Tangential: Coulomb friction, stick when
+// the force that stops the relative tangential velocity in one step is within mu |f_n|, slip with
+// mu |f_n| against the sliding direction otherwise. A point's stick force stops half its sliding: a
+// particle and the points around it sample the same interface, and together they must not reverse
+// it. A slave is looked up only when its distance to the die at its last lookup, less how far it
+// and the die have moved since, may have run out (the same contacts as a lookup of every slave at
+// every step). Computed by each particle's and each point's OWNER only; the forces enter the
+// fixed-point partial sums, so shared copies receive them exactly once.
 #pragma once
 #include <memory>
 #include <vector>
@@ -27,7 +35,7 @@
 
 namespace rk {
 
-struct DieTotals {       // per die, over the owned particles of this rank
+struct DieTotals {       // per die (and one for the symmetry planes), over this rank's slaves
   double force[3] = {0, 0, 0};  // force of the die on the modeled part this step (N)
   double press_work = 0;        // work done by the die on the part, cumulative (J)
   double friction_work = 0;     // dissipated by friction, cumulative (J), >= 0
@@ -51,33 +59,37 @@ class DieContact {
   // After the velocity update: the work of this step's contact forces with vbar.
   void account(const Model& md, const State& st, const std::vector<double>& v_old, double dt_avg, double t);
 
-  // Moves x out of any die it is inside, onto the die's surface (a reference update's new particle
-  // and point positions, on the material: its penalty contacts reach a little into the dies).
-  void push_out(double t, double* x) const;
-
   // The box the part may move in: its initial box joined with every die's box at time t, grown by a
   // quarter of its largest side. A particle outside has left the tools (a health check).
   void box(const double part_lo[3], const double part_hi[3], double t, double lo[3], double hi[3]) const;
 
+  // One entry per die, then one for the held symmetry planes (when the scene has dies and planes).
   const std::vector<DieTotals>& totals() const { return totals_; }
   std::vector<DieTotals>& totals() { return totals_; }  // restored from a checkpoint
   const Die& die(std::size_t k) const { return dies_[k]; }
   std::size_t size() const { return dies_.size(); }
 
  private:
+  struct Row {  // a slave's shape functions (md.material_* or the point's): u^h(x) = sum_k N[k] d_{cols[k]}
+    const std::int32_t* cols;
+    const double* N;
+    std::int32_t size;
+  };
   struct Active {
-    std::int32_t slave, die;  // a local particle, or an integration point
-    bool point;
+    std::int32_t slave, obstacle;  // slave: particles first, then points; obstacle: dies, then planes
     double normal_force[3], friction_force[3];
   };
-  // The field of a (3 per particle) at point g.
-  static void field_value(const Model& md, const std::vector<double>& a, std::size_t g, double out[3]);
+  Row row(const Model& md, std::size_t s) const;
+  void material_point(const Model& md, const State& st, std::size_t s, double x[3]) const;
+  void material_value(const Model& md, const std::vector<double>& a, std::size_t s, double out[3]) const;
+
   std::vector<Die> dies_;
   std::vector<DieSurface> surfaces_;
   std::vector<std::unique_ptr<DieSearch>> search_;
-  std::vector<std::int32_t> slaves_;  // owned particles
-  std::vector<double> point_N_max_, point_N_sum_;  // per point: max |N_J(X_g)|, sum |N_J(X_g)|
-  // per die and slave (the owned particles, then the points): a lower bound on its distance to the die
+  std::vector<SymmetryPlane> planes_;  // normals toward the material
+  std::vector<std::int32_t> particles_;  // the owned particles (slaves 0 .. particles_.size())
+  std::vector<double> mass_, N_sum_, N_max_;  // per slave: m, sum_J |N_J|, max_J |N_J|
+  // per obstacle and slave: a lower bound on its distance to the obstacle
   std::vector<double> clearance_;
   std::vector<double> u_last_, stroke_last_;  // at the last compute
   std::vector<Active> active_;        // reserved once: no allocation per step

@@ -1,12 +1,13 @@
 """Back extrusion (BENCHMARKS.md case 4) as the scene stands, with its reference updates, through its
 full 15 mm stroke on 2 ranks, against the scene's checks: energy identity within 2 %, volume change
 below 0.5 %, a punch force with no collapse, and a cup wall as high as the volume it holds.
-Measured 2026-11-23: 1.88 % and 0.46 % at most, 0.86 to 1.07 MN, the wall's top (98th percentile of
-its particles) 25.9 mm above the punch face where volume constancy puts it at 29.4 mm (88 %).
-Before the dies held the integration points (the material between the particles) the wall reached
-21.6 mm (73 %): the field between the held coefficients reached into the punch corner and each
-reference update squeezed that material back onto the surface. Before the points were kept out of
-the dies at an update, the run ended at 3.5 % and +1.8 %; with the supports' growth measured by the
+Measured 2026-12-01: 1.84 % and 0.46 % at most, 0.87 to 1.10 MN, the wall's top (98th percentile of
+its particles) 28.4 mm above the punch face where volume constancy puts it at 29.4 mm (97 %).
+With the dies holding the particles' coefficients instead of the material at them (u^h(X_I)), and
+each update putting the material that the penalty let into a die back onto its surface, the wall
+reached 25.9 mm (88 %): every update cut the spring's layer off (12 mm^3 of 9 400). Before the dies
+held the integration points it reached 21.6 mm (73 %), and the updates carried points deep into the
+dies: left there, the run ended at 3.5 % and +1.8 %; with the supports' growth measured by the
 scale-dependent pivot ratio as well, 1 625 of the 1 651 supports grew 6x at 5.5 mm, the punch lost
 312 of its 341 contacts within 50 steps and its force fell from 700 kN to 3-70 kN."""
 import csv
@@ -47,5 +48,5 @@ face = 30 - 1e3 * stroke
 wall = x[np.hypot(x[:, 0], x[:, 1]) > 14.5, 2]
 height = np.percentile(wall, 98) - face
 expected = (30 - face) * 14**2 / (20**2 - 14**2) + (30 - face)
-rkcase.check(height > 0.85 * expected,
+rkcase.check(height > 0.94 * expected,
              f"cup wall {height:.2f} mm above the punch face, {100 * height / expected:.0f} % of the {expected:.2f} mm volume constancy gives")
