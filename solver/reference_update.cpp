@@ -119,8 +119,10 @@ void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm
                       const KeepOut& keep_out) {
   compute_deformation_gradient(md, st);
   if (st.u_ref.empty()) st.u_ref.assign(st.u.size(), 0.0), st.J_ref.assign(md.m, 1.0);
-  for (std::size_t c = 0; c < md.cells; ++c)
-    for (auto g = std::size_t(md.cell_points[c]); g < std::size_t(md.cell_points[c + 1]); ++g) {
+  for (std::size_t c = 0; c < md.cells; ++c) {
+    const auto g0 = std::size_t(md.cell_points[c]), g1 = std::size_t(md.cell_points[c + 1]);
+    double volume = 0, weight = 0;  // the cell's: sum w_g J_ref J, sum w_g
+    for (auto g = g0; g < g1; ++g) {
       double x[3];  // x_g = X_g + u^h(X_g)
       point_position(md, st, g, x);
       // At a rigid wall, which holds the coefficients, the field between them reaches a little past
@@ -135,8 +137,16 @@ void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm
       double F[9];
       for (int i = 0; i < 9; ++i) F[i] = ratio * st.F[9 * g + i];
       push_forward(F, &st.cp_inv[6 * g]);
-      st.J_ref[g] *= st.J[g];
+      volume += md.weight[g] * st.J_ref[g] * st.J[g], weight += md.weight[g];
     }
+    // The points' volumes on the new reference, w_g J_ref. With F-bar the material responds to its
+    // cell's volume change, not to a point's own J; carried into the point's volume, the points' J
+    // scattered within a cell (0.34 to 2.1 at back extrusion's punch corner), the next stage's F-bar
+    // mean (by w_g) no longer measured the cell's volume, and the billet gained volume that no
+    // pressure resisted: from -0.45 % to +0.4 % over the stroke, the energy error up to 2.3 % at
+    // 1.6 mm. Every point of a cell takes the cell's mean instead (-0.42 to -0.50 %, 0.2-0.3 %).
+    for (auto g = g0; g < g1; ++g) st.J_ref[g] = md.fbar ? volume / weight : st.J_ref[g] * st.J[g];
+  }
   // The owned particles' new reference positions and velocities: those of the material they sit in,
   // x_I = X_I + u^h(X_I) and v^h(X_I) (coefficients that the old shape functions smoothed away would
   // strain the new ones: kept, they jolted the dies' contacts), positions put back onto their faces

@@ -48,11 +48,15 @@ auto collectively(const Comm& comm, Fn fn) {
   return result;
 }
 
-// "particle 12 at (x, y, z) m": the current position, for messages the user can act on
+// "particle 12 at (x, y, z) m": the current position (of the material, X_I + u^h(X_I), where the
+// particle's row is known; else X_I + d_I), for messages the user can act on
 std::string describe_particle(const Model& md, const State& st, std::int32_t I) {
+  double u[3] = {st.u[3 * I], st.u[3 * I + 1], st.u[3 * I + 2]};
+  if (!md.material_offsets.empty() && md.material_offsets[I + 1] > md.material_offsets[I])
+    material_displacement(md, st, std::size_t(I), u);
   std::ostringstream s;
-  s << "particle " << md.global_id[I] << " at (" << md.X[3 * I] + st.u[3 * I] << ", "
-    << md.X[3 * I + 1] + st.u[3 * I + 1] << ", " << md.X[3 * I + 2] + st.u[3 * I + 2] << ") m";
+  s << "particle " << md.global_id[I] << " at (" << md.X[3 * I] + u[0] << ", " << md.X[3 * I + 1] + u[1] << ", "
+    << md.X[3 * I + 2] + u[2] << ") m";
   return s.str();
 }
 
@@ -348,11 +352,13 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
         double lo[3], hi[3];
         dies->box(part_lo, part_hi, st.t, lo, hi);
         std::size_t out = md.n;
-        for (std::size_t I = 0; I < md.n && out == md.n; ++I)
-          for (int d = 0; d < 3; ++d) {
-            const double x = md.X[3 * I + d] + st.u[3 * I + d];
-            if (md.owned[I] && !(x >= lo[d] && x <= hi[d])) out = I;
-          }
+        for (std::size_t I = 0; I < md.n && out == md.n; ++I) {
+          if (!md.owned[I]) continue;
+          double uh[3];  // where the material at the particle is (the dies hold u^h(X_I), not d_I)
+          material_displacement(md, st, I, uh);
+          for (int d = 0; d < 3; ++d)
+            if (!(md.X[3 * I + d] + uh[d] >= lo[d] && md.X[3 * I + d] + uh[d] <= hi[d])) out = I;
+        }
         double escaped = out < md.n ? 1.0 : 0.0;
         comm.max(&escaped, 1);
         if (escaped > 0) {

@@ -34,10 +34,11 @@ rkcase.check(all(np.array_equal(a, b) for a, b in zip(frames[1], frames[2])),
              "back extrusion with friction and reference updates: 2 ranks bitwise equal to 1 rank")
 
 # Wheel forging sector: 0.3 mm of stroke, exact symmetry planes (issue 5: the nodal ones let the cut
-# faces drift by ~3 % of their motion, measured in essential_bcs.py).
+# faces drift by ~3 % of their motion, measured in essential_bcs.py), total Lagrangian (the exact
+# method's rows are not rebuilt at reference updates; 0.3 mm strains far less than an update's 0.2).
 c = tools.case("wheel_forging")
 tools.prep(c, 2, scene=geometry / "wheel_forging" / "scene.yaml",
-           sets=["discretization.spacing=4e-3", "discretization.ebc_method=transformation"])
+           sets=["discretization.spacing=4e-3", "discretization.ebc_method=transformation", "reference_updates.strain=0"])
 tools.solve(c, 2, sets=["time.end=30e-6", "time.output_interval=10e-6"])
 tools.post(c)
 first = meshio.read(c / "vtk" / "frame_00000.vtu")
