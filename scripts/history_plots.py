@@ -2,7 +2,10 @@
 """Curves of any case from CASE/history.csv: the energies against time with the energy error
 (energies.png) and, for each moving die, the press force against its stroke (force_stroke.png).
 
-  scripts/history_plots.py CASE        writes CASE/plots/energies.png [and force_stroke.png]"""
+  scripts/history_plots.py CASE        writes CASE/plots/energies.png [and force_stroke.png]
+  scripts/history_plots.py --compare OUT.png CASE[=LABEL] ...
+                                       one die's running-mean force against stroke for several
+                                       cases (a resolution study), the first moving die of each"""
 import csv
 import sys
 from pathlib import Path
@@ -48,31 +51,58 @@ def plot_energies(rows, path: Path) -> None:
     plt.close(fig)
 
 
+def force_curve(rows, die):
+    """Stroke (mm), force (kN) and its running mean over 2 % of the rows (the force rings with the
+    stress waves), the mean's ends cut where its window is incomplete; None if the die does not move."""
+    stroke = np.array([1e3 * float(r[die + ".stroke"]) for r in rows])
+    if stroke.max() <= 0:
+        return None
+    force = np.array([1e-3 * float(r[die + ".force"]) for r in rows])
+    k = max(1, len(rows) // 50)
+    mean = np.convolve(force, np.ones(k) / k, mode="same")
+    cut = slice(k // 2, len(stroke) - k // 2)
+    return stroke, force, stroke[cut], mean[cut]
+
+
+def finish_force_plot(fig, ax, path: Path) -> None:
+    ax.set_xlabel("stroke (mm)")
+    ax.set_ylabel("press force, full part (kN)")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+
+
 def plot_die_forces(rows, path: Path) -> bool:
-    """Force against stroke of each moving die: raw (it rings with the stress waves) and a running
-    mean over 2 % of the rows. False if no die moves."""
+    """Force against stroke of each moving die, raw and its running mean. False if no die moves."""
     fig, ax = plt.subplots(figsize=(6, 4))
     drawn = False
     for d in moving_dies(rows[0].keys()):
-        stroke = [1e3 * float(r[d + ".stroke"]) for r in rows]
-        if max(stroke) <= 0:
+        curve = force_curve(rows, d)
+        if curve is None:
             continue
-        force = np.array([1e-3 * float(r[d + ".force"]) for r in rows])
-        k = max(1, len(rows) // 50)
-        mean = np.convolve(force, np.ones(k) / k, mode="same")
-        line, = ax.plot(stroke, force, alpha=0.3, lw=0.8)
-        ax.plot(stroke[k // 2: len(stroke) - k // 2], mean[k // 2: len(stroke) - k // 2], color=line.get_color(),
-                label=f"{d} (running mean)")
+        line, = ax.plot(curve[0], curve[1], alpha=0.3, lw=0.8)
+        ax.plot(curve[2], curve[3], color=line.get_color(), label=f"{d} (running mean)")
         drawn = True
     if drawn:
-        ax.set_xlabel("stroke (mm)")
-        ax.set_ylabel("press force, full part (kN)")
-        ax.grid(alpha=0.3)
-        ax.legend()
-        fig.tight_layout()
-        fig.savefig(path, dpi=120)
+        finish_force_plot(fig, ax, path)
     plt.close(fig)
     return drawn
+
+
+def compare_forces(out: Path, cases) -> None:
+    """The running-mean force of each case's first moving die, on one plot."""
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for spec in cases:
+        case, _, label = spec.partition("=")
+        rows = read_history(Path(case))
+        curve = next((c for c in (force_curve(rows, d) for d in moving_dies(rows[0].keys())) if c is not None), None)
+        if curve is None:
+            raise SystemExit(f"history_plots.py: {case}/history.csv: no die moves")
+        ax.plot(curve[2], curve[3], label=label or case)
+    finish_force_plot(fig, ax, out)
+    plt.close(fig)
+    print("plot:", out)
 
 
 def main(case: Path) -> None:
@@ -85,4 +115,7 @@ def main(case: Path) -> None:
 
 
 if __name__ == "__main__":
-    main(Path(sys.argv[1]))
+    if sys.argv[1:2] == ["--compare"]:
+        compare_forces(Path(sys.argv[2]), sys.argv[3:])
+    else:
+        main(Path(sys.argv[1]))
