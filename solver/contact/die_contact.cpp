@@ -8,9 +8,15 @@ namespace rk {
 DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<DieSurface>& surfaces)
     : dies_(scene.dies), surfaces_(surfaces), penalty_scale_(scene.contact.penalty_scale) {
   if (dies_.empty()) return;
+  // With nodal integration the points are the particles' material points, with the same rows: they
+  // hold the material there, and particle slaves beside them would press it twice.
+  const bool nodal = scene.discretization.integration == "nodal";
   double hmax = 0;
   for (std::size_t I = 0; I < md.n; ++I)
-    if (md.owned[I]) particles_.push_back(std::int32_t(I)), hmax = std::max(hmax, md.spacing[I]);
+    if (md.owned[I]) {
+      hmax = std::max(hmax, md.spacing[I]);
+      if (!nodal) particles_.push_back(std::int32_t(I));
+    }
   // Penetrations stay far below half a spacing (the penalty is stiff); deeper ones would be missed.
   for (const auto& s : surfaces_) search_.push_back(std::make_unique<DieSearch>(s, 0.5 * hmax));
   for (SymmetryPlane plane : scene.symmetry_planes) {  // the normal toward this rank's material

@@ -2,7 +2,8 @@
 // symmetry planes. The slaves are material points, each with its row of shape functions:
 // - every owned particle at X_I + u^h(X_I) (not at its coefficient X_I + d_I), not only those on
 //   the initial surface: in forging the material folds and interior particles reach the dies;
-// - every integration point of this rank at X_g + u^h(X_g);
+// - every integration point of this rank at X_g + u^h(X_g) (with nodal integration the points are
+//   the particles' material points, and the particles are not slaves again);
 // a slave's contact force f acts on the field there, spread as N_J f onto the coefficients d_J.
 // RK shape functions do not interpolate: a die that held the coefficients let the field between and
 // at them reach into it (0.3-0.6 mm into back extrusion's punch corner with only the particles'
