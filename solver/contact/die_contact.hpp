@@ -17,7 +17,8 @@
 // 12 mm of stroke, then a singular moment matrix).
 // Normal: penalty k = penalty_scale * m / dt^2 on the penetration depth, m the particle's mass or the
 // point's rho w_g (tied to the stable step, so contact never shrinks it: spread over a row, it
-// stiffens the coefficients by sum_J N_J^2 k / m_J, about 0.3 k / m). Tangential: Coulomb friction, stick when
+// stiffens the coefficients by sum_J N_J^2 k / m_J, with sum_J N_J^2 at most 0.85 and 0.14-0.25 on
+// average, measured on back extrusion and wheel forging). Tangential: Coulomb friction, stick when
 // the force that stops the relative tangential velocity in one step is within mu |f_n|, slip with
 // mu |f_n| against the sliding direction otherwise. A point's stick force stops half its sliding: a
 // particle and the points around it sample the same interface, and together they must not reverse
