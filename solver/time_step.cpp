@@ -28,6 +28,12 @@ double smallest_stretch(const double F[9], double detF) {
   return std::sqrt(others > 0 ? detF * detF / others : std::max(smallest, 0.0));
 }
 
+double gershgorin_floor(const double F[9]) {
+  auto c = [&](int a, int b) { return F[a] * F[b] + F[3 + a] * F[3 + b] + F[6 + a] * F[6 + b]; };  // C = F^T F
+  const double xy = std::abs(c(0, 1)), yz = std::abs(c(1, 2)), zx = std::abs(c(2, 0));
+  return std::min({c(0, 0) - xy - zx, c(1, 1) - xy - yz, c(2, 2) - yz - zx});
+}
+
 StableStep stable_time_step(const Model& md, const State& st, double cfl) {
   double dt = std::numeric_limits<double>::infinity();
   std::size_t which = 0;
@@ -36,10 +42,13 @@ StableStep stable_time_step(const Model& md, const State& st, double cfl) {
     const double scale = md.cell_h0[c] / std::sqrt(c2);  // dt of the cell = scale * stretch
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
       const double* F = &st.F[9 * std::size_t(g)];
-      // Cheap lower bound first: lambda_min(C) >= det C / (lambda_mid lambda_max) >= 4 J^2 / (tr C)^2.
+      // Cheap lower bounds first: lambda_min(C) >= det C / (lambda_mid lambda_max) >= 4 J^2 / (tr C)^2,
+      // and Gershgorin's min_i (C_ii - sum_j!=i |C_ij|), the tight one near F = I (after a reference
+      // update, where the first leaves most points to the eigenvalue formula's acos and cos)
       double trC = 0;
       for (int k = 0; k < 9; ++k) trC += F[k] * F[k];
       if (scale * 2 * std::abs(st.J[g]) / trC >= dt) continue;  // cannot set the step
+      if (scale * std::sqrt(std::max(gershgorin_floor(F), 0.0)) >= dt) continue;
       const double dtg = scale * smallest_stretch(F, st.J[g]);
       if (dtg < dt) dt = dtg, which = c;
     }

@@ -22,4 +22,7 @@ StableStep stable_time_step(const Model& md, const State& st, double cfl);
 // det F as the kinematics computed it (State::J).
 double smallest_stretch(const double F[9], double detF);
 
+// Gershgorin's lower bound on the smallest eigenvalue of C = F^T F (may be negative: no bound).
+double gershgorin_floor(const double F[9]);
+
 }  // namespace rk

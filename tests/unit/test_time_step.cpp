@@ -32,4 +32,24 @@ TEST(TimeStep, SmallestStretchIsTheSmallestSingularValue) {
   EXPECT_NEAR(rk::smallest_stretch(shear, 1.0), (std::sqrt(5.0) - 1) / 2, 1e-12);
 }
 
+TEST(TimeStep, GershgorinFloorBoundsTheSmallestEigenvalueFromBelow) {
+  // a bound (never above lambda_min(C)), exact for a pure stretch, and close to it near F = I, where
+  // the time step uses it to skip the eigenvalue formula
+  const double cases[][3] = {{1, 1, 1}, {2, 0.5, 1}, {0.05, 3, 3}, {1.2, 1.2, 0.3}, {0.98, 1.01, 1.03}, {1e-3, 1, 20}};
+  for (const auto& k : cases) {
+    double F[9];
+    stretch_between_rotations(k[0], k[1], k[2], F);
+    const double lambda = std::pow(std::min({k[0], k[1], k[2]}), 2);
+    EXPECT_LE(rk::gershgorin_floor(F), lambda * (1 + 1e-12)) << k[0] << " " << k[1] << " " << k[2];
+  }
+  const double D[9] = {0.9, 0, 0, 0, 1.3, 0, 0, 0, 1.1};
+  EXPECT_DOUBLE_EQ(rk::gershgorin_floor(D), 0.81);
+  double near[9] = {1.01, 0.02, -0.01, 0.0, 0.99, 0.015, 0.01, -0.02, 1.0};  // a small strain
+  const double J = near[0] * (near[4] * near[8] - near[5] * near[7]) - near[1] * (near[3] * near[8] - near[5] * near[6]) +
+                   near[2] * (near[3] * near[7] - near[4] * near[6]);
+  const double exact = std::pow(rk::smallest_stretch(near, J), 2), floor = rk::gershgorin_floor(near);
+  EXPECT_LE(floor, exact);
+  EXPECT_GT(floor, 0.9 * exact) << "tight near F = I";
+}
+
 }  // namespace
