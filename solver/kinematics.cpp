@@ -32,29 +32,35 @@ void compute_deformation_gradient(const Model& md, State& st) {
   }
 }
 
-void point_position(const Model& md, const State& st, std::size_t g, double x[3]) {
+namespace {
+
+// x += sum_k N[k] (d_J - d_J^ref) over the row cols[k0 .. k1) (d^ref = 0 before the first update)
+void add_row(const State& st, const std::int32_t* cols, const double* N, std::int32_t k0, std::int32_t k1, double x[3]) {
   const bool updated = !st.u_ref.empty();
-  for (int i = 0; i < 3; ++i) x[i] = md.point_X[3 * g + i];
-  for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
-    const std::size_t J = 3 * std::size_t(md.nbr[k]);
-    for (int i = 0; i < 3; ++i) x[i] += md.N[k] * (updated ? st.u[J + i] - st.u_ref[J + i] : st.u[J + i]);
+  for (auto k = k0; k < k1; ++k) {
+    const std::size_t J = 3 * std::size_t(cols[k]);
+    for (int i = 0; i < 3; ++i) x[i] += N[k] * (updated ? st.u[J + i] - st.u_ref[J + i] : st.u[J + i]);
   }
 }
-
-namespace {
 
 // d_I^ref + sum_k N[k] (d_J - d_J^ref) over the row cols[k0 .. k1)
 void row_displacement(const State& st, std::size_t I, const std::int32_t* cols, const double* N, std::int32_t k0,
                       std::int32_t k1, double uh[3]) {
-  const bool updated = !st.u_ref.empty();
-  for (int i = 0; i < 3; ++i) uh[i] = updated ? st.u_ref[3 * I + i] : 0.0;
-  for (auto k = k0; k < k1; ++k) {
-    const std::size_t J = 3 * std::size_t(cols[k]);
-    for (int i = 0; i < 3; ++i) uh[i] += N[k] * (updated ? st.u[J + i] - st.u_ref[J + i] : st.u[J + i]);
-  }
+  for (int i = 0; i < 3; ++i) uh[i] = st.u_ref.empty() ? 0.0 : st.u_ref[3 * I + i];
+  add_row(st, cols, N, k0, k1, uh);
 }
 
 }  // namespace
+
+void point_position(const Model& md, const State& st, std::size_t g, double x[3]) {
+  for (int i = 0; i < 3; ++i) x[i] = md.point_X[3 * g + i];
+  add_row(st, md.nbr.data(), md.N.data(), md.nbr_offsets[g], md.nbr_offsets[g + 1], x);
+}
+
+void material_position(const Model& md, const State& st, std::size_t I, double x[3]) {
+  for (int i = 0; i < 3; ++i) x[i] = md.Xr[3 * I + i];
+  add_row(st, md.material_cols.data(), md.material_N.data(), md.material_offsets[I], md.material_offsets[I + 1], x);
+}
 
 void constrained_displacement(const Model& md, const State& st, std::size_t q, double uh[3]) {
   row_displacement(st, std::size_t(md.ebc_particles[q]), md.ebc_cols.data(), md.ebc_N.data(), md.ebc_offsets[q],

@@ -20,4 +20,8 @@ void constrained_displacement(const Model& md, const State& st, std::size_t q, d
 // The same at owned particle I from its row md.material_* (scenes with dies).
 void material_displacement(const Model& md, const State& st, std::size_t I, double uh[3]);
 
+// Owned particle I's material position X_I^ref + u^h(X_I) since the last update (its row md.material_*),
+// the counterpart of point_position.
+void material_position(const Model& md, const State& st, std::size_t I, double x[3]);
+
 }  // namespace rk

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kinematics.hpp"
+
 namespace rk {
 
 DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<DieSurface>& surfaces)
@@ -59,14 +61,8 @@ DieContact::Row DieContact::row(const Model& md, std::size_t s) const {
 }
 
 void DieContact::material_point(const Model& md, const State& st, std::size_t s, double x[3]) const {
-  const double* X = s < particles_.size() ? &md.Xr[3 * std::size_t(particles_[s])] : &md.point_X[3 * (s - particles_.size())];
-  const bool updated = !st.u_ref.empty();
-  const Row r = row(md, s);
-  for (int i = 0; i < 3; ++i) x[i] = X[i];
-  for (std::int32_t k = 0; k < r.size; ++k) {
-    const std::size_t J = 3 * std::size_t(r.cols[k]);
-    for (int i = 0; i < 3; ++i) x[i] += r.N[k] * (updated ? st.u[J + i] - st.u_ref[J + i] : st.u[J + i]);
-  }
+  if (s < particles_.size()) material_position(md, st, std::size_t(particles_[s]), x);
+  else point_position(md, st, s - particles_.size(), x);
 }
 
 void DieContact::material_value(const Model& md, const std::vector<double>& a, std::size_t s, double out[3]) const {

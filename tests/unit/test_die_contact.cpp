@@ -11,7 +11,8 @@
 //   the die, the particles in contact are exactly those whose X_I + u^h(X_I) is past it (u^h
 //   evaluated here with the RK shape functions directly): its neighbours too, not it alone.
 // - The symmetry planes hold the same slaves as frictionless planes: a shift across x = 0 presses
-//   exactly the particles and points the shift carries past it, with k times their depth along +x.
+//   exactly the particles and points the shift carries past it, with k times their depth along +x,
+//   whichever sign the scene gives the plane's normal.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -150,6 +151,11 @@ TEST(DieContact, SymmetryPlanesHoldTheMaterialThatCrossesThem) {
   for (std::size_t I = 0; I < md.n; ++I) st.u[3 * I] = -shift;
   rk::DieContact contact(md, u.scene, u.dies);
   const double bound = contact.compute(md, st, 0.0, dt);
+  rk::Scene flipped = u.scene;  // a plane given with its normal away from the part holds the same side
+  for (auto& plane : flipped.symmetry_planes)
+    for (double& c : plane.normal) c = -c;
+  rk::DieContact same(md, flipped, u.dies);
+  same.compute(md, st, 0.0, dt);
   ASSERT_EQ(contact.totals().size(), 2u) << "the die, then the planes";
   const rk::DieTotals& planes = contact.totals()[1];
 
@@ -165,6 +171,9 @@ TEST(DieContact, SymmetryPlanesHoldTheMaterialThatCrossesThem) {
   EXPECT_EQ(planes.point_contacts, points);
   EXPECT_NEAR(planes.force[0] / expected, 1.0, 1e-9) << "pushed back along +x";
   EXPECT_NEAR(planes.force[1], 0.0, 1e-9 * expected);
+  EXPECT_EQ(same.totals()[1].contacts, particles);
+  EXPECT_EQ(same.totals()[1].point_contacts, points);
+  EXPECT_EQ(same.totals()[1].force[0], planes.force[0]) << "the normal's sign comes from the part's side";
 
   const rk::FixedScale scale = rk::FixedScale::for_bound(bound, 12);
   std::fill(st.partial.begin(), st.partial.end(), rk::Fixed(0));
