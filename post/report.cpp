@@ -45,8 +45,10 @@ void write_report(const std::string& case_dir) {
   r << "| wall time | " << solve["wall_s"] << " s (setup " << solve["setup_s"] << " s, prep " << prep["wall_s"]
     << " s) |\n";
   r << "| cost | " << solve["ns_per_point_update"] << " ns per integration-point update |\n";
-  const double err = solve["energy_error"].get<double>();
-  r << "| energy balance | error " << 100 * err << " % of the energy scale: "
+  // the run's largest energy error decides the verdict (an error that peaked and fell back is not good)
+  const double err = solve.value("max_energy_error", solve["energy_error"].get<double>());
+  r << "| energy balance | largest error " << 100 * err << " % of the energy scale (at the end "
+    << 100 * solve["energy_error"].get<double>() << " %): "
     << (err <= 0.01 ? "**good** (<= 1 %)" : err <= 0.05 ? "**acceptable** (<= 5 %)" : "**poor** (> 5 %)") << " |\n";
   if (solve.value("mass_scaling", 1.0) > 1)
     r << "| quasi-static | mass scaling " << solve["mass_scaling"] << ", max kinetic/internal "

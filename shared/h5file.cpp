@@ -176,6 +176,7 @@ void H5File::set_attr(const std::string& name, const std::string& value) {
   H5Tset_size(type.id, value.size() + 1);
   set_attr_raw(file_, path_, name, type.id, value.c_str());
 }
+bool H5File::has_attr(const std::string& name) const { return H5Aexists(file_, name.c_str()) > 0; }
 std::int64_t H5File::attr_int(const std::string& name) const {
   Handle attr = open_attr(file_, path_, name);
   std::int64_t v = 0;

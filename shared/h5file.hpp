@@ -33,6 +33,7 @@ class H5File {
   void set_attr(const std::string& name, std::int64_t value);
   void set_attr(const std::string& name, double value);
   void set_attr(const std::string& name, const std::string& value);
+  bool has_attr(const std::string& name) const;
   std::int64_t attr_int(const std::string& name) const;
   double attr_double(const std::string& name) const;
   std::string attr_string(const std::string& name) const;

@@ -125,10 +125,12 @@ struct Scene {
   struct Health {
     double max_energy_error = 0.05;  // fraction of the energy scale; past it the run stops
     double min_dt_ratio = 1e-3;      // stable step / initial step below which the run stops
+    double max_symmetry_depth = 0.25;  // material past a symmetry plane, in spacings, that stops the run
   } health;
 
   std::string resolved_yaml;     // the deck with every default filled in
-  std::string prep_hash;         // hash of what rkprep depends on (geometry, discretization, CAD bytes)
+  std::string prep_hash;         // hash of the scene keys rkprep depends on (geometry, discretization, the dies'
+                                 // names, CAD paths and units; not the CAD files' contents)
 };
 
 // One "key.path=value" override from the command line (--set).

@@ -25,7 +25,8 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     f.set_attr("rank", std::int64_t(md.rank));
     f.set_attr("particles", std::int64_t(md.n));
     f.set_attr("points", std::int64_t(md.m));
-    f.write("clock/scalars", std::vector<double>{st.t, st.dt_half, st.contact_work, st.external_work, c.next_output,
+    f.set_attr("format", kCheckpointFormat);
+    f.write("clock/scalars", std::vector<double>{st.t, st.dt_half, c.max_error, st.external_work, c.next_output,
                                                  c.next_history, c.dt_stable, c.kinetic0, c.last_error, c.max_ke_ratio,
                                                  st.update_work});
     f.write("clock/integers", std::vector<std::int64_t>{st.step, c.frames, std::int64_t(dies.size())});
@@ -124,11 +125,15 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
   const std::int64_t updates = f.exists("particles/global_id") ? f.attr_int("reference_updates") : 0;
   if ((updates == 0 && f.attr_int("particles") != std::int64_t(md.n)) || f.attr_int("points") != std::int64_t(md.m))
     throw Error(path + ": the checkpoint does not match this case's subdomain (re-run from the start)");
+  if (!f.has_attr("format") || f.attr_int("format") != kCheckpointFormat)
+    throw Error(path + ": a checkpoint of another rksolve version (format " +
+                (f.has_attr("format") ? std::to_string(f.attr_int("format")) : std::string("1")) + ", this one reads " +
+                std::to_string(kCheckpointFormat) + "); re-run from the start");
   const auto s = f.read<double>("clock/scalars");
   const auto i = f.read<std::int64_t>("clock/integers");
   if (s.size() != 11 || i.size() != 3 || i[2] != std::int64_t(dies.size()))
     throw Error(path + ": the checkpoint's run clock or die count does not match");
-  st.t = s[0], st.dt_half = s[1], st.contact_work = s[2], st.external_work = s[3];
+  st.t = s[0], st.dt_half = s[1], c.max_error = s[2], st.external_work = s[3];
   c.next_output = s[4], c.next_history = s[5], c.dt_stable = s[6], c.kinetic0 = s[7], c.last_error = s[8],
   c.max_ke_ratio = s[9], st.update_work = s[10];
   st.step = i[0], c.frames = i[1];

@@ -6,7 +6,7 @@
 namespace rk {
 
 Energies compute_energies(const Model& md, const State& st, const std::vector<double>& v_old, const Comm& comm) {
-  double e[5] = {0, 0, 0, st.external_work, st.contact_work};
+  double e[4] = {0, 0, 0, st.external_work};
   for (std::size_t I = 0; I < md.n; ++I) {
     if (!md.owned[I]) continue;
     double v2 = 0;
@@ -20,8 +20,8 @@ Energies compute_energies(const Model& md, const State& st, const std::vector<do
     e[1] += md.weight[g] * (st.psi[g] + st.wp[g]);
     e[2] += md.weight[g] * st.wp[g];
   }
-  comm.sum(e, 5);
-  return {e[0], e[1], e[2], e[3], e[4]};
+  comm.sum(e, 4);
+  return {e[0], e[1], e[2], e[3], 0.0};
 }
 
 double energy_error(const Energies& e, double kinetic0) {

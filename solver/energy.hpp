@@ -10,7 +10,8 @@
 namespace rk {
 
 struct Energies {
-  double kinetic = 0, internal = 0, plastic = 0, external = 0, contact = 0;
+  double kinetic = 0, internal = 0, plastic = 0, external = 0;
+  double contact = 0;  // work of the contact forces on the material they hold (set by the caller)
 };
 
 // Whole-model totals at time t^n; kinetic energy from vbar = (v^{n-1/2} + v^{n+1/2}) / 2.

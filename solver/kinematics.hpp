@@ -17,7 +17,7 @@ void point_position(const Model& md, const State& st, std::size_t g, double x[3]
 // d_I^ref + sum_J N_J (d_J - d_J^ref) (d^ref = 0 before the first reference update).
 void constrained_displacement(const Model& md, const State& st, std::size_t q, double uh[3]);
 
-// The same at owned particle I from its row md.material_* (scenes with dies).
+// The same at owned particle I from its row md.material_*.
 void material_displacement(const Model& md, const State& st, std::size_t I, double uh[3]);
 
 // Owned particle I's material position X_I^ref + u^h(X_I) since the last update (its row md.material_*),

@@ -112,9 +112,8 @@ void build_smoothed_gradients(Model& md, const Subdomain& sub, const LocalShapes
       md.dN[k] /= md.weight[g];
 }
 
-// The shortest edge of each cell at t = 0 (hexahedra: 12 edges, tetrahedra: 6), for the time step; it
-// is kept through reference updates (the step then follows the points' stretch since the update).
-std::vector<double> shortest_edges(const Model& md) {
+// The shortest edge of each cell through the particles at `x` (hexahedra: 12 edges, tetrahedra: 6).
+std::vector<double> shortest_edges(const Model& md, const std::vector<double>& x) {
   static constexpr int kHex[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
                                       {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
   static constexpr int kTet[12][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
@@ -125,7 +124,7 @@ std::vector<double> shortest_edges(const Model& md) {
     for (int e = 0; e < (hex ? 12 : 6); ++e) {
       const int a = nodes[hex ? kHex[e][0] : kTet[e][0]], b = nodes[hex ? kHex[e][1] : kTet[e][1]];
       double d2 = 0;
-      for (int i = 0; i < 3; ++i) d2 += (md.X[3 * a + i] - md.X[3 * b + i]) * (md.X[3 * a + i] - md.X[3 * b + i]);
+      for (int i = 0; i < 3; ++i) d2 += (x[3 * a + i] - x[3 * b + i]) * (x[3 * a + i] - x[3 * b + i]);
       h0[c] = std::min(h0[c], std::sqrt(d2));
     }
   }
@@ -185,7 +184,15 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
     ++md.cell_points[sub.point_cell[g] + 1];
   }
   for (std::size_t c = 0; c < md.cells; ++c) md.cell_points[c + 1] += md.cell_points[c];
-  md.cell_h0 = shortest_edges(md);
+  // The time step's length: the shortest edge at t = 0, and after a reference update the shorter of
+  // that and the edge on the new reference (the step then follows the points' stretch since the
+  // update, which alone would forget a cell's compression before it; supports keep their t = 0 size,
+  // so a stretched cell does not lengthen the step either).
+  md.cell_h0 = shortest_edges(md, md.X);
+  if (initial_X) {
+    const std::vector<double> now = shortest_edges(md, md.Xr);
+    for (std::size_t c = 0; c < md.cells; ++c) md.cell_h0[c] = std::min(md.cell_h0[c], now[c]);
+  }
   const LocalShapes shapes(md.Xr, sub.volume, md.spacing, scene);
   if (scene.discretization.integration == "nodal" && md.m > 0 && sub.face_count() == 0)
     throw Error("subdomain of rank " + std::to_string(md.rank) + " holds no nodal-integration faces; re-run rkprep");
@@ -194,7 +201,7 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   bound_gradients(md);
 
   md.dies = sub.dies;
-  if (!md.dies.empty()) build_material_rows(md, shapes);
+  build_material_rows(md, shapes);
   md.neighbour_ranks = sub.neighbour_ranks;
   md.overlap = sub.overlap;
   std::vector<std::uint8_t> shared(md.n, 0);

@@ -36,9 +36,9 @@ struct Model {
   std::vector<std::int32_t> ebc_particles, ebc_offsets, ebc_cols;
   std::vector<double> ebc_N;
   std::vector<double> face_particles;  // owned particles per face (all_faces numbering)
-  // where dies hold the material (scenes with dies, die_contact.hpp): each owned particle's row
-  // N_J(X_I) (local J, CSR over the local particles; empty for the others; {I: 1} where the moment
-  // matrix is singular), for contact at u^h(X_I) and to show u^h(X_I) in the results
+  // where the material at each owned particle is: its row N_J(X_I) (local J, CSR over the local
+  // particles; empty for the others; {I: 1} where the moment matrix is singular), for contact at
+  // u^h(X_I) (die_contact.hpp) and to show u^h(X_I) in the results
   std::vector<std::int32_t> material_offsets, material_cols;
   std::vector<double> material_N;
 
@@ -54,7 +54,7 @@ struct Model {
   std::size_t cells = 0;
   std::vector<std::int64_t> cell_global_id;
   std::vector<std::int32_t> cell_points, cell_node_offsets, cell_nodes;
-  std::vector<double> cell_h0;  // shortest reference edge, for the stable time step
+  std::vector<double> cell_h0;  // shortest edge at t = 0 and on the reference, for the stable time step
 
   // points whose supports hold a shared particle (their forces are sent first) and the others,
   // whose work overlaps the messages

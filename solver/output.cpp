@@ -81,19 +81,14 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
         partial_[kProjected * std::size_t(md.nbr[k]) + c] += scale[c].fixed(md.weight[g] * md.N[k] * q[kProjected * g + c]);
   exchange_.sum(partial_);
 
-  // Displacements: u^h(X_I) = sum_J N_J(X_I) d_J where the row is known (in scenes with dies, which
-  // hold u^h(X_I), every particle; else the constrained particles, where the exact method holds it on
-  // the boundary condition), the coefficient d_I elsewhere.
-  std::vector<std::int32_t> row(md.n, -1);
-  for (std::size_t q = 0; q < md.ebc_particles.size(); ++q) row[md.ebc_particles[q]] = std::int32_t(q);
+  // Displacements: the material's, u^h(X_I) = sum_J N_J(X_I) d_J (RK coefficients are not values).
   std::vector<std::int64_t> gid;
   std::vector<double> x, u, v, ep, vm, pr, sigma;
   for (std::size_t I = 0; I < md.n; ++I) {
     if (!md.owned[I]) continue;
     gid.push_back(md.global_id[I]);
     double uh[3] = {st.u[3 * I], st.u[3 * I + 1], st.u[3 * I + 2]};
-    if (!md.material_offsets.empty()) material_displacement(md, st, I, uh);
-    else if (row[I] >= 0) constrained_displacement(md, st, std::size_t(row[I]), uh);
+    material_displacement(md, st, I, uh);
     for (int i = 0; i < 3; ++i) {
       x.push_back(md.X[3 * I + i] + uh[i]);
       u.push_back(uh[i]);

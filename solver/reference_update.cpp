@@ -115,8 +115,7 @@ double largest_strain_since_update(const Model& md, const State& st) {
   return 0.5 * std::sqrt(worst);
 }
 
-void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm, const Projection& project,
-                      const KeepOut& keep_out) {
+void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm, const Projection& project) {
   compute_deformation_gradient(md, st);
   if (st.u_ref.empty()) st.u_ref.assign(st.u.size(), 0.0), st.J_ref.assign(md.m, 1.0);
   for (std::size_t c = 0; c < md.cells; ++c) {
@@ -125,12 +124,10 @@ void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm
     for (auto g = g0; g < g1; ++g) {
       double x[3];  // x_g = X_g + u^h(X_g)
       point_position(md, st, g, x);
-      // At a rigid wall, which holds the coefficients, the field between them reaches a little past
-      // it: a point carried there is put back onto the wall. Dies hold the field itself (die_contact.hpp),
-      // so a point in a die is only as deep as its penalty spring and stays there: putting it back
-      // would cut the spring's layer off the material at every update (back extrusion: 12 mm^3 of
-      // its 9 400 per update, the cup wall 12 % short at full stroke).
-      keep_out(x);
+      // Dies and walls hold the field itself (die_contact.hpp), so a point in one is only as deep as
+      // its penalty spring and stays there: putting it back would cut the spring's layer off the
+      // material at every update (back extrusion: 12 mm^3 of its 9 400 per update, the cup wall 12 %
+      // short at full stroke).
       for (int i = 0; i < 3; ++i) md.point_X[3 * g + i] = x[i];
       // C_p^-1 <- Fbar C_p^-1 Fbar^T, the trial elastic left Cauchy-Green tensor of this state
       const double ratio = md.fbar ? std::cbrt(st.cell_J[c] / st.J[g]) : 1.0;
@@ -149,9 +146,9 @@ void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm
   }
   // The owned particles' new reference positions and velocities: those of the material they sit in,
   // x_I = X_I + u^h(X_I) and v^h(X_I) (coefficients that the old shape functions smoothed away would
-  // strain the new ones: kept, they jolted the dies' contacts), positions put back onto their faces
-  // and the walls they touch; a particle in a die stays where its penalty spring holds it, as the
-  // points do (the dies hold u^h(X_I), so the spring keeps its depth across the update).
+  // strain the new ones: kept, they jolted the dies' contacts), positions put back onto their faces;
+  // a particle in a die or a wall stays where its penalty spring holds it, as the points do (the
+  // contact holds u^h(X_I), so the spring keeps its depth across the update).
   // The coefficients become d_I = x_I - X_I and v_I = v^h;
   // the kinetic energy this removes is booked as update_work. Nothing here throws: every rank must
   // reach the rebuild's collectives.
@@ -239,8 +236,7 @@ void rebuild_on_reference(Model& md, State& st, const Scene& scene, const Comm& 
   scale_mass(next, md.mass_scaling);
   next.spacing0.clear();
   for (auto I : local) next.spacing0.push_back(record[I][kSpacing0]);
-  // The stable step keeps the cells' shortest t = 0 edges (build_model): spheres of the t = 0 size
-  // hold as many particles as at t = 0, and the points' stretch since the update shortens it.
+  // The stable step takes the shorter of the cells' t = 0 edges and their edges now (build_model).
   st.u.assign(3 * next.n, 0.0), st.v.assign(3 * next.n, 0.0), st.u_ref.assign(3 * next.n, 0.0);
   for (std::size_t k = 0; k < next.n; ++k)
     for (int i = 0; i < 3; ++i) {

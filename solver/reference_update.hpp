@@ -2,9 +2,9 @@
 // shapes of t = 0; where the material shears hard (back extrusion: the metal turning the punch
 // corner) the supports become thin slivers that no longer hold the material together. An update
 // makes the current configuration the new reference: particles and integration points move to where
-// the material they sit in is, x = X + u^h(X) (the points keep their t = 0 volumes as weights; one
-// the map carries through a rigid wall is put back onto it; in a die, where the contact holds the
-// field, the material stays at its spring's depth), the
+// the material they sit in is, x = X + u^h(X) (the points keep their t = 0 volumes as weights;
+// material pressed into a die or a wall, where the contact holds the field, stays at its spring's
+// depth), the
 // particles take the material's velocity v^h(X_I) (the kinetic energy this smooths away is booked as
 // update_work), the shape functions are rebuilt there on supports of the t = 0 size, grown once
 // where the particles surround a point poorly, and the plastic state is pushed forward (C_p^-1 <- Fbar C_p^-1
@@ -26,15 +26,11 @@ namespace rk {
 // Largest norm of the Green strain E = (F^T F - I) / 2 since the last update over this rank's points.
 double largest_strain_since_update(const Model& md, const State& st);
 
-// Puts owned particle I's new reference position x (3) where it may be: onto its essential-BC
-// faces and the rigid walls it touches, out of the walls it would be behind.
+// Puts owned particle I's new reference position x (3) onto its essential-BC faces.
 using Projection = std::function<void(std::size_t I, double* x)>;
-// Moves an integration point's new reference position x (3) out of the rigid walls it is behind.
-using KeepOut = std::function<void(double* x)>;
 
 // The update at the current state (collective).
-void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm, const Projection& project,
-                      const KeepOut& keep_out);
+void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm, const Projection& project);
 
 // Rebuilds this rank's model on the reference positions X + d^ref and moves the particle state onto
 // the new local particles. Reads only the owned particles' X, d, v, d^ref and md.point_X, so it also

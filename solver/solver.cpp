@@ -15,7 +15,6 @@
 #include "boundary/essential_bc.hpp"
 #include "checkpoint.hpp"
 #include "contact/die_contact.hpp"
-#include "contact/rigid_wall.hpp"
 #include "energy.hpp"
 #include "error.hpp"
 #include "internal_force.hpp"
@@ -48,12 +47,11 @@ auto collectively(const Comm& comm, Fn fn) {
   return result;
 }
 
-// "particle 12 at (x, y, z) m": the current position (of the material, X_I + u^h(X_I), where the
-// particle's row is known; else X_I + d_I), for messages the user can act on
+// "particle 12 at (x, y, z) m": the current position (of the material, X_I + u^h(X_I), for an owned
+// particle; else X_I + d_I), for messages the user can act on
 std::string describe_particle(const Model& md, const State& st, std::int32_t I) {
   double u[3] = {st.u[3 * I], st.u[3 * I + 1], st.u[3 * I + 2]};
-  if (!md.material_offsets.empty() && md.material_offsets[I + 1] > md.material_offsets[I])
-    material_displacement(md, st, std::size_t(I), u);
+  if (md.material_offsets[I + 1] > md.material_offsets[I]) material_displacement(md, st, std::size_t(I), u);
   std::ostringstream s;
   s << "particle " << md.global_id[I] << " at (" << md.X[3 * I] + u[0] << ", " << md.X[3 * I + 1] + u[1] << ", "
     << md.X[3 * I + 2] + u[2] << ") m";
@@ -63,7 +61,8 @@ std::string describe_particle(const Model& md, const State& st, std::int32_t I) 
 std::vector<std::string> history_columns(const Scene& scene) {
   std::vector<std::string> c{"time",         "dt",          "kinetic",      "internal",      "plastic_work",
                              "external_work", "contact_work", "energy_error", "friction_work", "contacts",
-                             "point_contacts", "max_penetration", "kinetic_internal_ratio", "volume_change", "ebc_error", "update_work"};
+                             "point_contacts", "max_penetration", "kinetic_internal_ratio", "volume_change", "ebc_error", "update_work",
+                             "spring_energy", "symmetry_depth"};
   for (const auto& w : scene.rigid_walls) c.push_back(w.name + ".force");
   for (const auto& d : scene.dies)
     for (const char* q : {".stroke", ".force", ".fx", ".fy", ".fz", ".work"}) c.push_back(d.name + q);
@@ -145,10 +144,10 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   }
   const double update_strain = scene.reference_updates.strain;
   bool update_due = false;
-  std::vector<double> row(columns.size(), 0.0), wall_force(scene.rigid_walls.size(), 0.0);
+  std::vector<double> row(columns.size(), 0.0);
   // Global sums for a history row, laid out as: the scalars below, one force per rigid wall, then
   // (contacts, fx, fy, fz, press work) per die, then (fx, fy, fz) per fixed or prescribed face.
-  enum { kContacts, kPointContacts, kSprings, kFriction, kDieWork, kVolume, kEbcWork, kUpdateWork, kScalars };
+  enum { kContacts, kPointContacts, kSprings, kFriction, kContactWork, kVolume, kEbcWork, kUpdateWork, kScalars };
   std::vector<double> sums(kScalars + scene.rigid_walls.size() + 5 * scene.dies.size() + ebc->reactions().size());
   double max_ebc_error = 0;
   double part_lo[3] = {1e300, 1e300, 1e300}, part_hi[3] = {-1e300, -1e300, -1e300};  // the part's initial box
@@ -156,6 +155,9 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     for (int d = 0; d < 3; ++d) part_lo[d] = std::min(part_lo[d], md.X[3 * I + d]), part_hi[d] = std::max(part_hi[d], md.X[3 * I + d]);
   comm.min(part_lo, 3);
   comm.max(part_hi, 3);
+  double h_min = 1e300;  // the smallest particle spacing, the scale of the symmetry planes' health check
+  for (std::size_t I = 0; I < md.n; ++I) h_min = std::min(h_min, md.spacing0[I]);
+  comm.min(&h_min, 1);
   double volume0 = 0;  // sum of the points' reference volumes (each point lives on one rank)
   for (std::size_t g = 0; g < md.m; ++g) volume0 += md.weight[g];
   comm.sum(&volume0, 1);
@@ -189,15 +191,8 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     timer.start();
     const bool last = st.t >= t_end * (1 - 1e-12);
     if (update_due) {  // the current configuration becomes the reference
-      const Projection project = [&](std::size_t I, double* x) {
-        const double c[3] = {md.X[3 * I] + st.u[3 * I], md.X[3 * I + 1] + st.u[3 * I + 1], md.X[3 * I + 2] + st.u[3 * I + 2]};
-        ebc->project(md, I, st.t, x);
-        for (const auto& w : scene.rigid_walls) project_onto_wall(w, c, x);
-      };
-      const auto keep_out = [&](double* x) {
-        for (const auto& w : scene.rigid_walls) project_onto_wall(w, x, x);
-      };
-      collectively(comm, [&] { return update_reference(md, st, scene, comm, project, keep_out), 0; });
+      const Projection project = [&](std::size_t I, double* x) { ebc->project(md, I, st.t, x); };
+      collectively(comm, [&] { return update_reference(md, st, scene, comm, project), 0; });
       rebind();
       update_due = false;
       timer.stop(kReference);
@@ -226,9 +221,9 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     // rank 0's clock decides whether a wall-clock checkpoint is due (written at the next step's top)
     const bool clock_due = comm.rank() == 0 && scene.output.checkpoint_minutes > 0 &&
                            comm.wtime() - last_checkpoint_wall >= 60 * scene.output.checkpoint_minutes;
-    double red[5] = {-stable.dt, bound, healthy ? 0.0 : 1.0, clock_due ? 1.0 : 0.0,
-                     update_strain > 0 ? largest_strain_since_update(md, st) : 0.0};
-    comm.max(red, 5);
+    double red[6] = {-stable.dt, bound, healthy ? 0.0 : 1.0, clock_due ? 1.0 : 0.0,
+                     update_strain > 0 ? largest_strain_since_update(md, st) : 0.0, dies->symmetry_depth() / h_min};
+    comm.max(red, 6);
     checkpoint_due = red[3] > 0;
     update_due = update_strain > 0 && red[4] > update_strain;
     timer.stop(kTimeStep);
@@ -240,6 +235,17 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
           << describe_particle(md, st, md.cell_nodes[md.cell_node_offsets[stable.cell]])
           << " (last frame written); refine the spacing there";
       comm.check(stable.dt > -red[0], why.str());
+    }
+    if (red[5] > scene.health.max_symmetry_depth) {  // the material broke through a symmetry plane
+      write_frame(st.v);
+      const std::int32_t I = dies->deepest_particle(md);
+      std::ostringstream why;
+      if (I >= 0)
+        why << "the material near " << describe_particle(md, st, I) << " is " << dies->symmetry_depth()
+            << " m past a symmetry plane (health.max_symmetry_depth = " << scene.health.max_symmetry_depth
+            << " spacings) at step " << st.step << ", t = " << st.t
+            << " s (last frame written); the state is not physical: refine the spacing or reduce time.cfl";
+      comm.check(I < 0 || dies->symmetry_depth() / h_min <= scene.health.max_symmetry_depth, why.str());
     }
     if (red[2] > 0) {  // a rank is unhealthy: show the user the state, then stop every rank
       std::ostringstream why;
@@ -279,13 +285,6 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
         st.v[3 * I + i] += dt_avg * (g[i] - st.force[3 * I + i] / md.mass[I]);
       }
     ebc->apply(md, st, st.t + dt, dt, dt_avg, v_old);
-    std::int64_t contacts = 0;
-    for (std::size_t w = 0; w < scene.rigid_walls.size(); ++w) {
-      const WallResult r = apply_rigid_wall(md, st, scene.rigid_walls[w], dt, dt_avg, v_old);
-      st.contact_work += r.work;
-      wall_force[w] = r.normal_force;
-      contacts += r.contacts;
-    }
     dies->account(md, st, v_old, dt_avg, st.t);
     if (has_gravity)  // work of the body force on the owned particles
       for (std::size_t I = 0; I < md.n; ++I)
@@ -295,42 +294,47 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
 
     if (last || st.t >= next_history - 1e-9 * hist_dt) {  // history row at t^n
       Energies e = compute_energies(md, st, v_old, comm);
-      const std::size_t walls = wall_force.size(), die0 = kScalars + walls;
+      const std::size_t walls = scene.rigid_walls.size(), die0 = kScalars + walls;
       std::fill(sums.begin(), sums.end(), 0.0);
-      sums[kContacts] = double(contacts);
       sums[kEbcWork] = ebc->step_work();
       sums[kUpdateWork] = st.update_work;
       for (std::size_t g = 0; g < md.m; ++g) sums[kVolume] += md.weight[g] * st.total_J(g);
-      for (std::size_t w = 0; w < walls; ++w) sums[kScalars + w] = wall_force[w];
+      for (std::size_t w = 0; w < walls; ++w) sums[kScalars + w] = dies->wall_force(w);
       double pen = 0;
-      for (std::size_t d = 0; d < dies->totals().size(); ++d) {  // the dies, then the held symmetry planes
+      for (std::size_t d = 0; d < dies->totals().size(); ++d) {  // the dies, the rigid walls, then the symmetry planes
         const DieTotals& t = dies->totals()[d];
-        sums[kSprings] += t.spring_energy, sums[kFriction] += t.friction_work, sums[kDieWork] += t.contact_work;
-        if (d >= dies->size()) continue;
-        double* out = &sums[die0 + 5 * d];
-        out[0] = double(t.contacts), out[1] = t.force[0], out[2] = t.force[1], out[3] = t.force[2], out[4] = t.press_work;
+        sums[kSprings] += t.spring_energy, sums[kFriction] += t.friction_work, sums[kContactWork] += t.contact_work;
+        if (d >= dies->size() + walls) continue;
         sums[kContacts] += double(t.contacts);
         sums[kPointContacts] += double(t.point_contacts);
         pen = std::max(pen, t.max_penetration);
+        if (d >= dies->size()) continue;
+        double* out = &sums[die0 + 5 * d];
+        out[0] = double(t.contacts), out[1] = t.force[0], out[2] = t.force[1], out[3] = t.force[2], out[4] = t.press_work;
       }
       const std::size_t face0 = die0 + 5 * dies->size();
       std::copy(ebc->reactions().begin(), ebc->reactions().end(), sums.begin() + std::ptrdiff_t(face0));
       comm.sum(sums.data(), int(sums.size()));
-      double worst[2] = {pen, ebc->max_error(md, st, st.t)};
-      comm.max(worst, 2);
+      double worst[3] = {pen, ebc->max_error(md, st, st.t), dies->symmetry_depth()};
+      comm.max(worst, 3);
       pen = worst[0];
       max_ebc_error = std::max(max_ebc_error, worst[1]);
-      e.contact += sums[kDieWork];
+      // The balance of the part (docs/scene.md, "Energy"): KE + internal = KE0 + W_ext + W_contact, with
+      // W_contact the work of the contact forces on the material they hold. The penalty springs'
+      // energy k d^2 / 2 is part of that work already (the dies' work less the springs' and friction's
+      // share), so it is not counted again; it is reported in its own column.
+      e.contact = sums[kContactWork];
       e.external -= 0.5 * sums[kEbcWork];
-      e.internal += sums[kSprings];  // penalty springs store energy like the material
       Energies balance = e;  // the kinetic energy reference updates smoothed away is not an error
       balance.external += sums[kUpdateWork];
       last_error = energy_error(balance, kinetic0);
+      clock.max_error = std::max(clock.max_error, last_error);
       const double ratio = e.internal > 0 ? e.kinetic / e.internal : 0.0;
       if (st.t > 0.05 * t_end) max_ke_ratio = std::max(max_ke_ratio, ratio);
       std::size_t c = 0;
       for (double v : {st.t, dt, e.kinetic, e.internal, e.plastic, e.external, e.contact, last_error, sums[kFriction],
-                       sums[kContacts], sums[kPointContacts], pen, ratio, sums[kVolume] / volume0 - 1, worst[1], sums[kUpdateWork]})
+                       sums[kContacts], sums[kPointContacts], pen, ratio, sums[kVolume] / volume0 - 1, worst[1], sums[kUpdateWork],
+                       sums[kSprings], worst[2]})
         row[c++] = v;
       for (std::size_t w = 0; w < walls; ++w) row[c++] = sums[kScalars + w];
       for (std::size_t d = 0; d < dies->size(); ++d) {
@@ -348,7 +352,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       }
       collectively(comm, [&] { return history ? (history->write(row), 0) : 0; });  // a full disk stops all ranks
       next_history += hist_dt;
-      if (!dies->empty()) {  // a particle that has left the tools' box: the run went wrong
+      if (dies->size() > 0) {  // a particle that has left the tools' box: the run went wrong
         double lo[3], hi[3];
         dies->box(part_lo, part_hi, st.t, lo, hi);
         std::size_t out = md.n;
@@ -440,6 +444,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                         {"ns_per_point_update", st.step > 0 ? 1e9 * loop_s * comm.size() / (counts[1] * double(st.step)) : 0.0},
                         {"plastic_fraction", counts[3] / std::max(counts[4], 1.0)},
                         {"energy_error", last_error},
+                        {"max_energy_error", clock.max_error},
                         {"ebc_method", scene.discretization.ebc_method},
                         {"constraints", ebc->constraints()},
                         {"max_ebc_error_m", max_ebc_error},

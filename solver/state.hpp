@@ -38,8 +38,9 @@ struct State {
   // det of the deformation gradient from t = 0 (J above is since the last reference update)
   double total_J(std::size_t g) const { return J_ref.empty() ? J[g] : J[g] * J_ref[g]; }
 
-  // work of boundary forces done on the OWNED particles of this rank (sum over ranks = total)
-  double contact_work = 0, external_work = 0;
+  // work of the body force done on the OWNED particles of this rank (sum over ranks = total); the
+  // contact forces' work is the obstacles' (die_contact.hpp)
+  double external_work = 0;
   double update_work = 0;  // kinetic energy changed by reference updates (<= 0: smoothed away)
   std::int64_t contacts = 0;
 

@@ -9,7 +9,21 @@ namespace rk {
 
 DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<DieSurface>& surfaces)
     : dies_(scene.dies), surfaces_(surfaces), penalty_scale_(scene.contact.penalty_scale) {
-  if (dies_.empty()) return;
+  for (const RigidWall& w : scene.rigid_walls) {  // its normal points into the part's side
+    Plane p{{w.point[0], w.point[1], w.point[2]}, {w.normal[0], w.normal[1], w.normal[2]}, dies_.size() + planes_.size()};
+    planes_.push_back(p);
+  }
+  walls_ = planes_.size();
+  for (const SymmetryPlane& s : scene.symmetry_planes) {  // the normal toward this rank's material
+    double side = 0;
+    for (std::size_t I = 0; I < md.n; ++I)
+      for (int i = 0; i < 3; ++i) side += (md.Xr[3 * I + i] - s.point[i]) * s.normal[i];
+    const double sign = side < 0 ? -1.0 : 1.0;
+    planes_.push_back({{s.point[0], s.point[1], s.point[2]}, {sign * s.normal[0], sign * s.normal[1], sign * s.normal[2]},
+                       dies_.size() + walls_});
+  }
+  if (empty()) return;
+  totals_.resize(dies_.size() + walls_ + (planes_.size() > walls_ ? 1 : 0));
   // With nodal integration the points are the particles' material points, with the same rows: they
   // hold the material there, and particle slaves beside them would press it twice.
   const bool nodal = scene.discretization.integration == "nodal";
@@ -20,16 +34,8 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
       if (!nodal) particles_.push_back(std::int32_t(I));
     }
   // Penetrations stay far below half a spacing (the penalty is stiff); deeper ones would be missed.
-  for (const auto& s : surfaces_) search_.push_back(std::make_unique<DieSearch>(s, 0.5 * hmax));
-  for (SymmetryPlane plane : scene.symmetry_planes) {  // the normal toward this rank's material
-    double side = 0;
-    for (std::size_t I = 0; I < md.n; ++I)
-      for (int i = 0; i < 3; ++i) side += (md.Xr[3 * I + i] - plane.point[i]) * plane.normal[i];
-    if (side < 0)
-      for (double& c : plane.normal) c = -c;
-    planes_.push_back(plane);
-  }
-  totals_.resize(dies_.size() + (planes_.empty() ? 0 : 1));
+  margin_ = 0.5 * hmax;
+  for (const auto& s : surfaces_) search_.push_back(std::make_unique<DieSearch>(s, margin_));
 
   const std::size_t slaves = particles_.size() + md.m;
   mass_.resize(slaves), N_sum_.assign(slaves, 0.0), N_max_.assign(slaves, 0.0);
@@ -74,7 +80,7 @@ void DieContact::material_value(const Model& md, const std::vector<double>& a, s
 
 double DieContact::compute(const Model& md, const State& st, double t, double dt) {
   active_.clear();
-  if (dies_.empty()) return 0;
+  if (empty()) return 0;
   // How far any local coefficient moved since the last call: a slave moved at most sum_J |N_J| times that.
   double moved = 0;
   if (u_last_.size() == st.u.size()) {
@@ -87,6 +93,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     moved = std::sqrt(worst);
   }
   u_last_ = st.u;  // sized at the first call
+  deepest_ = -1;
   const std::size_t slaves = particles_.size() + md.m;
   double largest = 0;
   for (auto& tot : totals_) {
@@ -102,9 +109,9 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     const double die_moved = die ? std::abs(stroke - stroke_last_[k]) : 0.0;
     if (die) stroke_last_[k] = stroke;
     const double mu = die ? dies_[k].friction : 0.0;
-    const double margin = search_[0]->margin();
+    const double margin = margin_;
     const double clear = 1e-6 * margin;  // only a slave at least this far out is skipped
-    DieTotals& tot = totals_[die ? k : dies_.size()];
+    DieTotals& tot = totals_[die ? k : planes_[k - dies_.size()].total];
     // The obstacle's closest point to x (current), in its own frame.
     auto nearest = [&](const double* x) {
       if (die) {
@@ -112,7 +119,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
         for (int i = 0; i < 3; ++i) y[i] = x[i] - stroke * mo->direction[i];
         return search_[k]->nearest(y);
       }
-      const SymmetryPlane& p = planes_[k - dies_.size()];
+      const Plane& p = planes_[k - dies_.size()];
       DieHit hit{true, 0, {p.normal[0], p.normal[1], p.normal[2]}};
       for (int i = 0; i < 3; ++i) hit.gap += (x[i] - p.point[i]) * p.normal[i];
       return hit;
@@ -147,6 +154,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
         tot.force[i] += a.normal_force[i] + a.friction_force[i];
         largest = std::max(largest, N_max_[s] * std::abs(a.normal_force[i] + a.friction_force[i]));
       }
+      if (depth > tot.max_penetration && !die && k - dies_.size() >= walls_) deepest_ = std::int32_t(s);
       tot.max_penetration = std::max(tot.max_penetration, depth);
       tot.spring_energy += 0.5 * kI * depth * depth;
       (s < particles_.size() ? tot.contacts : tot.point_contacts) += 1;
@@ -154,6 +162,25 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     }
   }
   return largest;
+}
+
+double DieContact::symmetry_depth() const { return planes_.size() > walls_ ? totals_.back().max_penetration : 0.0; }
+
+std::int32_t DieContact::deepest_particle(const Model& md) const {
+  if (deepest_ < 0) return -1;
+  if (std::size_t(deepest_) < particles_.size()) return particles_[std::size_t(deepest_)];
+  const std::size_t g = std::size_t(deepest_) - particles_.size();  // a point: its strongest particle
+  std::int32_t best = md.nbr[std::size_t(md.nbr_offsets[g])];
+  double most = -1;
+  for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
+    if (md.N[std::size_t(k)] > most) most = md.N[std::size_t(k)], best = md.nbr[std::size_t(k)];
+  return best;
+}
+
+double DieContact::wall_force(std::size_t w) const {
+  const Plane& p = planes_[w];
+  const double* f = totals_[p.total].force;
+  return f[0] * p.normal[0] + f[1] * p.normal[1] + f[2] * p.normal[2];
 }
 
 void DieContact::box(const double part_lo[3], const double part_hi[3], double t, double lo[3], double hi[3]) const {
@@ -183,7 +210,7 @@ void DieContact::account(const Model& md, const State& st, const std::vector<dou
     const bool die = std::size_t(a.obstacle) < dies_.size();
     const double rate = die ? dies_[a.obstacle].motion.rate(t) : 0.0;
     const double* direction = die ? dies_[a.obstacle].motion.direction.data() : nullptr;
-    DieTotals& tot = totals_[die ? std::size_t(a.obstacle) : dies_.size()];
+    DieTotals& tot = totals_[die ? std::size_t(a.obstacle) : planes_[std::size_t(a.obstacle) - dies_.size()].total];
     double before[3], after[3];
     material_value(md, v_old, std::size_t(a.slave), before);
     material_value(md, st.v, std::size_t(a.slave), after);

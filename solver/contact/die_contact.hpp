@@ -1,5 +1,6 @@
-// Contact of the workpiece with the moving rigid dies (seed 4.3) and, in scenes with dies, with its
-// symmetry planes. The slaves are material points, each with its row of shape functions:
+// Contact of the workpiece with the moving rigid dies (seed 4.3), its fixed rigid walls and its
+// symmetry planes: one treatment for every rigid obstacle. The slaves are material points, each with
+// its row of shape functions:
 // - every owned particle at X_I + u^h(X_I) (not at its coefficient X_I + d_I), not only those on
 //   the initial surface: in forging the material folds and interior particles reach the dies;
 // - every integration point of this rank at X_g + u^h(X_g) (with nodal integration the points are
@@ -11,6 +12,9 @@
 // update, which moves the material to the field, had to cut that layer off at the die surface:
 // back extrusion's cup lost 12 mm^3 per update (its wall ended at 88 % of its height). Held at the
 // field, the material is where the dies let it be, and an update leaves it there.
+// Rigid walls are frictionless fixed planes for the same slaves (a wall that held the coefficients
+// kinematically let the field at the impact face's rim reach through it, and the same Taylor bar read
+// a footprint 3 % apart from the one held on a flat die).
 // Symmetry planes are frictionless fixed planes for the same slaves: the nodal EBCs hold the
 // coefficients of the particles on a plane, not the field, and a die that presses the field near
 // a plane pushed it across (back extrusion's punch corner: integration points 4.8 mm past y = 0 at
@@ -37,7 +41,7 @@
 
 namespace rk {
 
-struct DieTotals {       // per die (and one for the symmetry planes), over this rank's slaves
+struct DieTotals {       // per die, per rigid wall, and one for the symmetry planes, over this rank's slaves
   double force[3] = {0, 0, 0};  // force of the die on the modeled part this step (N)
   double press_work = 0;        // work done by the die on the part, cumulative (J)
   double friction_work = 0;     // dissipated by friction, cumulative (J), >= 0
@@ -51,7 +55,7 @@ struct DieTotals {       // per die (and one for the symmetry planes), over this
 class DieContact {
  public:
   DieContact(const Model& md, const Scene& scene, const std::vector<DieSurface>& surfaces);
-  bool empty() const { return dies_.empty(); }
+  bool empty() const { return dies_.empty() && planes_.empty(); }  // nothing to meet
 
   // Contact forces at time t from the positions and the velocities v^{n-1/2}; dt is the previous
   // (global) step. Adds -f_c to the fixed-point partials (after compute and the bound reduction).
@@ -65,11 +69,17 @@ class DieContact {
   // quarter of its largest side. A particle outside has left the tools (a health check).
   void box(const double part_lo[3], const double part_hi[3], double t, double lo[3], double hi[3]) const;
 
-  // One entry per die, then one for the held symmetry planes (when the scene has dies and planes).
+  // One entry per die, one per rigid wall, then one for the symmetry planes (when the scene has any).
   const std::vector<DieTotals>& totals() const { return totals_; }
   std::vector<DieTotals>& totals() { return totals_; }  // restored from a checkpoint
   const Die& die(std::size_t k) const { return dies_[k]; }
-  std::size_t size() const { return dies_.size(); }
+  std::size_t size() const { return dies_.size(); }  // the dies (totals()[0 .. size()))
+  // The force of rigid wall w on the part along the wall's normal, this step (totals()[size() + w]).
+  double wall_force(std::size_t w) const;
+  // How deep this rank's material is past a symmetry plane this step (m), and the local particle
+  // there (the slave's, or the point's largest N_J; -1 when none is past), for the health check.
+  double symmetry_depth() const;
+  std::int32_t deepest_particle(const Model& md) const;
 
  private:
   struct Row {  // a slave's shape functions (md.material_* or the point's): u^h(x) = sum_k N[k] d_{cols[k]}
@@ -88,7 +98,13 @@ class DieContact {
   std::vector<Die> dies_;
   std::vector<DieSurface> surfaces_;
   std::vector<std::unique_ptr<DieSearch>> search_;
-  std::vector<SymmetryPlane> planes_;  // normals toward the material
+  struct Plane {          // a fixed frictionless plane: a rigid wall or a symmetry plane
+    double point[3], normal[3];  // the normal toward the material
+    std::size_t total;           // its entry in totals_
+  };
+  std::vector<Plane> planes_;  // the rigid walls, then the symmetry planes
+  std::size_t walls_ = 0;
+  std::int32_t deepest_ = -1;  // this step's slave deepest past a symmetry plane
   std::vector<std::int32_t> particles_;  // the owned particles (slaves 0 .. particles_.size())
   std::vector<double> mass_, N_sum_, N_max_;  // per slave: m, sum_J |N_J|, max_J |N_J|
   // per obstacle and slave: a lower bound on its distance to the obstacle
@@ -97,7 +113,7 @@ class DieContact {
   std::vector<Active> active_;        // reserved once: no allocation per step
   std::vector<DieTotals> totals_;
   std::vector<double> die_box_;  // per die at t = 0: lo[3], hi[3]
-  double penalty_scale_;
+  double penalty_scale_, margin_ = 0;
 };
 
 }  // namespace rk
