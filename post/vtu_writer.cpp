@@ -11,9 +11,26 @@
 namespace rk {
 namespace {
 
-// The arrays of one file, raw binary in the <AppendedData> block after the XML: each array is
-// [header][data], compressed: the header holds the block count, block size, last block size and the
-// compressed sizes, then the zlib blocks (vtkZLibDataCompressor).
+// Standard base64 of n bytes, padded.
+void base64(const unsigned char* p, std::size_t n, std::string& out) {
+  static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  for (std::size_t i = 0; i < n; i += 3) {
+    const std::uint32_t b = std::uint32_t(p[i]) << 16 | (i + 1 < n ? std::uint32_t(p[i + 1]) << 8 : 0) |
+                            (i + 2 < n ? std::uint32_t(p[i + 2]) : 0);
+    out += kDigits[b >> 18 & 63];
+    out += kDigits[b >> 12 & 63];
+    out += i + 1 < n ? kDigits[b >> 6 & 63] : '=';
+    out += i + 2 < n ? kDigits[b & 63] : '=';
+  }
+}
+
+// The arrays of one file in the <AppendedData> block after the XML, base64-encoded: each array is
+// base64(header) base64(data), the two encoded apart as VTK writes them. Uncompressed, the header is
+// the byte count; compressed, it holds the block count, block size, last block size and the
+// compressed sizes, and the data the zlib blocks (vtkZLibDataCompressor). Base64 rather than raw
+// bytes: meshio converts a raw block to base64 itself and, when one array's new offset equals a later
+// array's raw offset, gives that later array's name to the wrong data (measured: a velocity array of
+// 243 x 3 for 729 points, read correctly by VTK).
 class Appended {
  public:
   explicit Appended(bool compress) : compress_(compress) {}
@@ -21,45 +38,37 @@ class Appended {
   template <class T>
   void array(std::ostream& xml, const char* type, const std::string& name, int components, const std::vector<T>& v) {
     xml << "        <DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfComponents=\"" << components
-        << "\" format=\"appended\" offset=\"" << bytes_.size() << "\"/>\n";
+        << "\" format=\"appended\" offset=\"" << text_.size() << "\"/>\n";
     const auto* raw = reinterpret_cast<const unsigned char*>(v.data());
     const std::uint64_t size = v.size() * sizeof(T);
     if (!compress_) {
-      put(&size, 8);
-      put(raw, size);
+      base64(reinterpret_cast<const unsigned char*>(&size), 8, text_);
+      base64(raw, size, text_);
       return;
     }
     constexpr std::uint64_t kBlock = 32768;
     const std::uint64_t blocks = size == 0 ? 0 : (size + kBlock - 1) / kBlock;
     std::vector<std::uint64_t> header{blocks, kBlock, blocks == 0 ? 0 : size - (blocks - 1) * kBlock};
-    const std::size_t at = bytes_.size();
-    bytes_.resize(at + 8 * (header.size() + blocks));  // the compressed sizes are filled in below
+    std::vector<unsigned char> packed;
     for (std::uint64_t b = 0; b < blocks; ++b) {
       const std::uint64_t n = std::min(kBlock, size - b * kBlock);
       uLongf out = compressBound(uLong(n));
-      const std::size_t start = bytes_.size();
-      bytes_.resize(start + out);
-      if (compress2(bytes_.data() + start, &out, raw + b * kBlock, uLong(n), 6) != Z_OK)
+      const std::size_t start = packed.size();
+      packed.resize(start + out);
+      if (compress2(packed.data() + start, &out, raw + b * kBlock, uLong(n), 6) != Z_OK)
         throw Error("zlib failed to compress the VTK array " + name);
-      bytes_.resize(start + out);
+      packed.resize(start + out);
       header.push_back(out);
     }
-    std::memcpy(bytes_.data() + at, header.data(), 8 * header.size());
+    base64(reinterpret_cast<const unsigned char*>(header.data()), 8 * header.size(), text_);
+    base64(packed.data(), packed.size(), text_);
   }
 
-  void write(std::ostream& f) const {
-    f << "  <AppendedData encoding=\"raw\">\n   _";
-    f.write(reinterpret_cast<const char*>(bytes_.data()), std::streamsize(bytes_.size()));
-    f << "\n  </AppendedData>\n";
-  }
+  void write(std::ostream& f) const { f << "  <AppendedData encoding=\"base64\">\n   _" << text_ << "\n  </AppendedData>\n"; }
 
  private:
-  void put(const void* p, std::size_t n) {
-    const auto* c = static_cast<const unsigned char*>(p);
-    bytes_.insert(bytes_.end(), c, c + n);
-  }
   bool compress_;
-  std::vector<unsigned char> bytes_;
+  std::string text_;
 };
 
 void arrays(std::ostream& f, Appended& data, const std::vector<VtuArray>& list) {
