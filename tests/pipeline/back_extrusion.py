@@ -1,7 +1,8 @@
 """Back extrusion (BENCHMARKS.md case 4) as the scene stands, with its reference updates, through its
 full 15 mm stroke on 2 ranks, against the scene's checks: energy identity within 2 %, the volume kept
-(below), a punch force with no collapse, and a cup wall as high as the volume it holds.
-Measured 2026-12-01: 1.12 % at most, 0.86 to 1.11 MN, the wall's top (98th percentile of its
+(below), the punch force curve against the measured one (below), and a cup wall as high as the
+volume it holds.
+Measured 2026-12-01: 1.12 % at most, the wall's top (98th percentile of its
 particles) 28.45 mm above the punch face where volume constancy puts it at 29.4 mm (97 %).
 With the dies holding the particles' coefficients instead of the material at them (u^h(X_I)), and
 each update putting the material that the penalty let into a die back onto its surface, the wall
@@ -29,10 +30,24 @@ with open(case / "history.csv") as f:
     rows = list(csv.DictReader(f))
 stroke = float(rows[-1]["punch.stroke"])
 rkcase.check(abs(stroke - 15e-3) < 1e-6, f"full stroke: {1e3 * stroke:.3f} mm, {solve['reference_updates']} reference updates")
-for s0 in (2e-3, 5.75e-3, 8e-3, 11e-3, 14e-3):
-    near = [float(r["punch.force"]) for r in rows if abs(float(r["punch.stroke"]) - s0) <= 0.3e-3]
-    force = sum(near) / max(len(near), 1)
-    rkcase.check(len(near) >= 10 and 0.6e6 < force < 1.3e6, f"punch force {force / 1e3:.0f} kN (full part) at {1e3 * s0:.2f} mm")
+# The punch force (full part), mean over +-1 mm of stroke (67 history rows), measured at the scene's
+# 2.5 mm spacing and at 1.6 mm (both on 1 rank):
+#   stroke (mm)    2      5      8      11     14
+#   2.5 mm (kN)    878.9  960.8  1070.9 1079.0 1127.6
+#   1.6 mm (kN)    869.0  970.3  1023.5 1035.2 1053.1   (2.5 mm is +1.1, -1.0, +4.6, +4.2, +7.1 % off it)
+# and the 1.25 mm resolution within 0.1-2.1 % of the 1.6 mm one. Each window's tolerance is twice
+# the spread of the test's resolution against the finer one there, and no less than twice the
+# 2.1 % that the finer resolutions still move it: 4.2, 4.2, 9.3, 8.5, 14.1 %. A change of the
+# contact, the friction or the reference updates that moves the force by more than a resolution
+# step fails here; the force collapse of the supports' growth (700 kN to 3-70 kN) by far.
+FORCE_KN = {2: (878.9, 869.0), 5: (960.8, 970.3), 8: (1070.9, 1023.5), 11: (1079.0, 1035.2), 14: (1127.6, 1053.1)}
+for s_mm, (measured, finer) in FORCE_KN.items():
+    near = [float(r["punch.force"]) for r in rows if abs(float(r["punch.stroke"]) - 1e-3 * s_mm) <= 1e-3]
+    force = sum(near) / max(len(near), 1) / 1e3
+    tol = max(2 * abs(measured / finer - 1), 2 * 0.021)
+    rkcase.check(len(near) >= 60 and abs(force / measured - 1) <= tol,
+                 f"punch force {force:.1f} kN (full part) at {s_mm} +- 1 mm of stroke: the measured {measured} kN "
+                 f"within {100 * tol:.1f} % (1.6 mm: {finer} kN)")
 held = [int(float(r["contacts"])) + int(float(r["point_contacts"])) for r in rows if float(r["punch.stroke"]) > 2e-3]
 contacts = np.percentile(held, 10)
 rkcase.check(contacts >= 250, f"{contacts:.0f} particles and points in contact in 90 % of the rows after 2 mm of stroke")

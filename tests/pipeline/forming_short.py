@@ -3,7 +3,9 @@ back extrusion on 2 ranks bitwise equal to 1 rank (die contact with friction acr
 through reference updates), and stopped half-way and restarted bitwise equal to the whole run (the
 dies' and the symmetry planes' contact work in the checkpoint);
 the wheel-forging sector keeps its cut faces on their non-axis-aligned symmetry planes (exact EBCs), conserves
-volume and energy, and forming_report.py writes its numbers and pictures."""
+volume and energy, presses with the measured punch force at the end of its 0.3 mm stroke, and
+forming_report.py writes its numbers and pictures."""
+import csv
 import json
 import subprocess
 
@@ -50,8 +52,8 @@ rkcase.check(mid >= 1 and all(np.array_equal(a, b) for a, b in zip(frames[2], re
              f"back extrusion stopped after {mid} reference update{'s' * (mid != 1)} and restarted: the last frame and history row "
              "bitwise equal to the whole run")
 
-# Wheel forging sector: 0.3 mm of stroke, exact symmetry planes (issue 5: the nodal ones let the cut
-# faces drift by ~3 % of their motion, measured in essential_bcs.py), total Lagrangian (the exact
+# Wheel forging sector: 0.3 mm of stroke, exact symmetry planes (the nodal ones let the material at the
+# cut faces drift off them by ~3 % of its motion, measured in essential_bcs.py), total Lagrangian (the exact
 # method's rows are not rebuilt at reference updates; 0.3 mm strains far less than an update's 0.2).
 c = tools.case("wheel_forging")
 tools.prep(c, 2, scene=geometry / "wheel_forging" / "scene.yaml",
@@ -83,7 +85,17 @@ res = json.loads(report.stdout)
 print(json.dumps(res, indent=2))
 rkcase.check(res["max_penetration_mm"] < 0.01, f"deepest penetration {res['max_penetration_mm']:.4f} mm < 0.01 mm")
 rkcase.check(abs(res["dies"]["punch"]["stroke_mm"] - 0.3) < 1e-9, "punch stroke 0.3 mm at 30 us (10 m/s)")
-rkcase.check(res["dies"]["punch"]["peak_force_kN"] > 0, f"punch force {res['dies']['punch']['peak_force_kN']:.0f} kN")
+# The punch force (full part) at the end of the stroke, as the mean over its last 0.05 mm (57 history
+# rows: the penalty contact rings, the last row alone moved from 285 to 469 kN between the runs below).
+# Measured: 355.9 kN here (the same, bitwise, on 1 rank); 359.0 kN at CFL 0.4, 355.2 kN at penalty
+# scale 0.2, 332.6 and 340.0 kN at spacing 3.6 and 4.4 mm: at most 6.5 % from it, the tolerance 13 %
+# is twice that.
+with open(c / "history.csv") as f:
+    near = [float(r["punch.force"]) for r in csv.DictReader(f) if 0.25e-3 <= float(r["punch.stroke"]) <= 0.3e-3 + 1e-12]
+force = sum(near) / max(len(near), 1) / 1e3
+rkcase.check(len(near) >= 40 and abs(force / 355.9 - 1) < 0.13,
+             f"punch force {force:.1f} kN (full part) over the stroke's last 0.05 mm ({len(near)} rows): the measured "
+             "355.9 kN within 13 %")
 rkcase.check(res["max_abs_volume_change"] < 0.005, f"volume change {100 * res['max_abs_volume_change']:.3f} % < 0.5 %")
 # (the punch's impact at 10 m/s makes the start-up error larger; the full runs are checked by the studies)
 rkcase.check(res["final_energy_error"] < 0.02, f"energy identity within {100 * res['final_energy_error']:.2f} % at "

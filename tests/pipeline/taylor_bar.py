@@ -1,6 +1,10 @@
 """Taylor bar through all three programs, measured from the .vtu that rkpost wrote (meshio).
 
---stage checkpoint: coarse bar to 12 us, impact-face radius 5.35-5.55 mm (converged codes 5.44-5.46).
+--stage checkpoint: coarse bar to 12 us, impact-face radius 5.35-5.55 mm (converged codes 5.44-5.46); the
+run writes a checkpoint every 400 of its 581 steps (output.checkpoint_steps), and a copy of the case left
+as a run killed after that mid-run checkpoint leaves it (the final checkpoint, the last frame and the
+history rows after half the remaining time removed) continues with `rksolve CASE --restart` to a last
+frame and a history.csv bitwise equal to the uninterrupted run's.
 --stage full: the 2007 paper's resolution (1369 particles) to 80 us, r_f and L_f as the converged FE
 reference measures them (the material impact face and free end, scripts/taylor_metrics.py): L_f
 within 0.5 % of the converged 21.45 mm; r_f 7.456 mm measured (2026-12-01), 3.3 % above the converged
@@ -16,7 +20,10 @@ from CFL 0.9 to 0.5 (+0.049 mm); the same energy and kinetic-energy bounds.
 import argparse
 import csv
 import json
+import shutil
 import sys
+
+import h5py
 
 import meshio
 import numpy as np
@@ -33,9 +40,64 @@ a = ap.parse_args()
 tools = rkcase.Tools(a.bin, a.work)
 case = tools.case(f"taylor_{a.stage}")
 
+
+def checkpoint_clock(path):
+    """(step, frames written) of a checkpoint file, and its time."""
+    with h5py.File(path, "r") as f:
+        return int(f["clock/integers"][0]), int(f["clock/integers"][1]), float(f["clock/scalars"][0])
+
+
+def last_frame_data(case):
+    """Every dataset of each rank's newest frame file, by rank and name."""
+    out = {}
+    for rank in sorted((case / "results").glob("rank_*")):
+        newest = sorted(rank.glob("frame_*.h5"))[-1]
+        with h5py.File(newest, "r") as f:
+            f.visititems(lambda name, d: out.__setitem__((rank.name, newest.name, name), d[()])
+                         if isinstance(d, h5py.Dataset) else None)
+    return out
+
+
 if a.stage == "checkpoint":
     tools.prep(case, a.ranks, sets=["discretization.spacing=0.6e-3"])
-    tools.solve(case, a.ranks, sets=["time.end=12e-6", "time.output_interval=6e-6"])
+    # 581 steps to 12 us (measured): checkpoints at step 400 and at the end, so the one before the
+    # last (rank_NNNN.h5.previous) is the mid-run one; any step count between 400 and 800 keeps it so
+    every = 400
+    sets = ["time.end=12e-6", "time.output_interval=6e-6", f"output.checkpoint_steps={every}"]
+    tools.solve(case, a.ranks, sets=sets)
+    steps = json.loads((case / "solve.json").read_text())["steps"]
+    killed = tools.case("taylor_checkpoint_killed")
+    shutil.copytree(case, killed)
+    mid = set()
+    for newest in sorted((killed / "checkpoint").glob("rank_*.h5")):
+        newest.unlink()  # the final checkpoint: as if the run had been killed before it
+        previous = newest.with_name(newest.name + ".previous")
+        mid.add(checkpoint_clock(previous))
+        previous.rename(newest)
+    rkcase.check(len(mid) == 1 and 0 < next(iter(mid))[0] == every < steps,
+                 f"a checkpoint every {every} steps: every rank holds the mid-run one {sorted(mid)} "
+                 f"(step, frames, t) of the {steps} steps")
+    ck_step, ck_frames, ck_t = next(iter(mid))
+    for rank in (killed / "results").glob("rank_*"):  # the frames after the checkpoint were never written
+        for frame in rank.glob("frame_*.h5"):
+            if int(frame.stem.split("_")[1]) >= ck_frames:
+                frame.unlink()
+    lines = (killed / "history.csv").read_text().splitlines(keepends=True)
+    crash_t = 0.5 * (ck_t + 12e-6)  # the rows up to half-way from the checkpoint to the end were written
+    kept = lines[:1] + [ln for ln in lines[1:] if float(ln.split(",")[0]) <= crash_t]
+    (killed / "history.csv").write_text("".join(kept))
+    (killed / "solve.json").unlink()
+    rkcase.check(len(lines) > len(kept) > 1, f"killed after t = {ck_t:.4g} s (step {ck_step}): {len(kept) - 1} of "
+                 f"{len(lines) - 1} history rows and {ck_frames} frames left")
+    tools.run(["mpirun", "-np", a.ranks, tools.bin / "rksolve", killed, "--quiet", "--restart"] +
+              sum((["--set", s] for s in sets), []))
+    whole, resumed = last_frame_data(case), last_frame_data(killed)
+    rkcase.check(whole.keys() == resumed.keys() and all(np.array_equal(whole[k], resumed[k]) for k in whole),
+                 f"restarted from step {ck_step}: the last frame ({len(whole)} datasets: positions, velocities, "
+                 "stresses, plastic strain, ...) bitwise equal to the uninterrupted run's")
+    rkcase.check((killed / "history.csv").read_bytes() == (case / "history.csv").read_bytes(),
+                 f"restarted from step {ck_step}: history.csv ({len(lines) - 1} rows) bitwise equal")
+    rkcase.check(json.loads((killed / "solve.json").read_text())["steps"] == steps, f"the restarted run ends at step {steps}")
 else:
     tools.prep(case, a.ranks, sets=["discretization.integration=nodal"] if a.stage == "nodal" else [])
     tools.solve(case, a.ranks)

@@ -13,6 +13,14 @@
 // - The symmetry planes hold the same slaves as frictionless planes: a shift across x = 0 presses
 //   exactly the particles and points the shift carries past it, with k times their depth along +x,
 //   whichever sign the scene gives the plane's normal.
+// - Coulomb friction on the same lifted billet (the die's face is the plane z = 10 mm, normal -z),
+//   closed forms per slave with the normal force f_n = k d and the stick force m |v_t| / dt that
+//   stops the relative tangential velocity v_t in one step (half of it at an integration point):
+//   below mu f_n every slave sticks and the total is -sum c m v_t / dt (c = 1 particles, 1/2 points),
+//   whatever mu; above it every slave slips with mu f_n against the sliding direction, so the total
+//   tangential force is mu |F_z| along -v_t; a die sliding over material at rest drags it along its
+//   own motion; the friction work over a step is dt |F_t| times the mean sliding speed (>= 0), for
+//   either sliding direction.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -181,6 +189,142 @@ TEST(DieContact, SymmetryPlanesHoldTheMaterialThatCrossesThem) {
   double on_particles = 0;
   for (std::size_t I = 0; I < md.n; ++I) on_particles -= scale.real(st.partial[3 * I]);
   EXPECT_NEAR(on_particles / planes.force[0], 1.0, 1e-9) << "sum_J N_J f = f";
+}
+
+// The billet lifted 0.8 mm into the die with every coefficient at velocity v (the field is v
+// everywhere: the rows sum to one), for the friction tests: the slaves in contact with their
+// depths, masses and the factor c of their stick force (1 at a particle, 1/2 at a point).
+struct Lifted {
+  static constexpr double lift = 0.8e-3, top = 10e-3, dt = 1e-7;
+  struct Slave {
+    double depth, mass, c;
+  };
+  std::vector<Slave> slaves;
+  double depth_min = 1e300, depth_max = 0;
+
+  explicit Lifted(const Upsetting& u) {
+    const rk::Model& md = u.md;
+    for (std::size_t I = 0; I < md.n; ++I)
+      if (md.X[3 * I + 2] + lift > top) slaves.push_back({md.X[3 * I + 2] + lift - top, md.mass[I], 1.0});
+    for (std::size_t g = 0; g < md.m; ++g)
+      if (md.point_X[3 * g + 2] + lift > top)
+        slaves.push_back({md.point_X[3 * g + 2] + lift - top, md.density * md.weight[g], 0.5});
+    for (const auto& s : slaves) depth_min = std::min(depth_min, s.depth), depth_max = std::max(depth_max, s.depth);
+  }
+  static rk::State state(const rk::Model& md, const double v[3]) {
+    const double zero[9] = {};
+    rk::State st = rk::State::initial(md, zero, zero);
+    for (std::size_t I = 0; I < md.n; ++I)
+      for (int i = 0; i < 3; ++i) st.u[3 * I + i] = i == 2 ? lift : 0.0, st.v[3 * I + i] = v[i];
+    return st;
+  }
+  // sum over the slaves of m c: the stick force per unit sliding speed is this / dt
+  double stick_mass() const {
+    double sum = 0;
+    for (const auto& s : slaves) sum += s.c * s.mass;
+    return sum;
+  }
+  double normal_force(double penalty_scale) const {
+    double sum = 0;
+    for (const auto& s : slaves) sum += penalty_scale * s.mass / (dt * dt) * s.depth;
+    return sum;
+  }
+};
+
+rk::Scene with_friction(const Upsetting& u, double mu) {
+  rk::Scene scene = u.scene;
+  scene.dies[0].friction = mu;
+  return scene;
+}
+
+TEST(DieContact, FrictionSticksWhenTheStickForceIsWithinMuFn) {
+  const Upsetting u;
+  const Lifted lifted(u);
+  const double mu = 0.12, s = u.scene.contact.penalty_scale, dt = Lifted::dt;
+  ASSERT_GT(lifted.depth_min, 0.0);
+  // a slave sticks when c m v / dt <= mu s m d / dt^2, i.e. v <= mu s d / (c dt): half the smallest
+  const double vx = 0.5 * mu * s * lifted.depth_min / dt;
+  const double v[3] = {vx, 0, 0};
+  const rk::State st = Lifted::state(u.md, v);
+  const double expected = -lifted.stick_mass() * vx / dt;
+  for (double m : {mu, 0.5}) {  // stuck: the force does not depend on mu
+    rk::DieContact contact(u.md, with_friction(u, m), u.dies);
+    contact.compute(u.md, st, 0.0, dt);
+    const rk::DieTotals& tot = contact.totals()[0];
+    ASSERT_EQ(std::size_t(tot.contacts + tot.point_contacts), lifted.slaves.size());
+    EXPECT_NEAR(tot.force[2] / -lifted.normal_force(s), 1.0, 1e-9) << "the normal force is unchanged";
+    EXPECT_NEAR(tot.force[0] / expected, 1.0, 1e-9) << "mu " << m << ": stick stops the sliding in one step";
+    EXPECT_NEAR(tot.force[1], 0.0, 1e-9 * std::abs(expected));
+    EXPECT_LT(std::abs(tot.force[0]), m * std::abs(tot.force[2])) << "within the friction cone";
+  }
+  rk::DieContact frictionless(u.md, u.scene, u.dies);  // the scene's mu = 0: no tangential force
+  frictionless.compute(u.md, st, 0.0, dt);
+  EXPECT_EQ(frictionless.totals()[0].force[0], 0.0);
+  EXPECT_EQ(frictionless.totals()[0].force[1], 0.0);
+}
+
+TEST(DieContact, FrictionSlipsAtMuFnAgainstTheSlidingDirection) {
+  const Upsetting u;
+  const Lifted lifted(u);
+  const double mu = 0.12, s = u.scene.contact.penalty_scale, dt = Lifted::dt;
+  // every slave slips when c m v / dt > mu s m d / dt^2 for the deepest slave and c = 1/2: 4x that
+  const double speed = 4 * mu * s * lifted.depth_max / (0.5 * dt);
+  const double dir[3] = {0.6, -0.8, 0};  // a sliding direction off the axes
+  const double v[3] = {speed * dir[0], speed * dir[1], 0};
+  const rk::State st = Lifted::state(u.md, v);
+  rk::DieContact contact(u.md, with_friction(u, mu), u.dies);
+  contact.compute(u.md, st, 0.0, dt);
+  const rk::DieTotals& tot = contact.totals()[0];
+  const double fn = lifted.normal_force(s);
+  ASSERT_EQ(std::size_t(tot.contacts + tot.point_contacts), lifted.slaves.size());
+  EXPECT_NEAR(tot.force[2] / -fn, 1.0, 1e-9);
+  for (int i = 0; i < 2; ++i)
+    EXPECT_NEAR(tot.force[i] / (-mu * fn * dir[i]), 1.0, 1e-9) << "component " << i << ": mu f_n against v_t";
+  EXPECT_LT(mu * fn, lifted.stick_mass() * speed / dt) << "below what sticking would take";
+}
+
+TEST(DieContact, ADieSlidingOverMaterialAtRestDragsItAlong) {
+  const Upsetting u;
+  const Lifted lifted(u);
+  const double mu = 0.12, s = u.scene.contact.penalty_scale, dt = Lifted::dt;
+  rk::Scene scene = with_friction(u, mu);
+  const double speed = 4 * mu * s * lifted.depth_max / (0.5 * dt);  // slip everywhere, as above
+  scene.dies[0].motion = rk::DieMotion{{0, 1, 0}, speed, {}};  // the die moves along +y over its own face's plane
+  const double rest[3] = {0, 0, 0};
+  const rk::State st = Lifted::state(u.md, rest);
+  rk::DieContact contact(u.md, scene, u.dies);
+  contact.compute(u.md, st, 0.0, dt);
+  const rk::DieTotals& tot = contact.totals()[0];
+  const double fn = lifted.normal_force(s);
+  ASSERT_EQ(std::size_t(tot.contacts + tot.point_contacts), lifted.slaves.size());
+  EXPECT_NEAR(tot.force[1] / (mu * fn), 1.0, 1e-9) << "the relative velocity is the material's less the die's";
+  EXPECT_NEAR(tot.force[0], 0.0, 1e-9 * fn);
+}
+
+TEST(DieContact, FrictionWorkIsTheForceTimesTheMeanSlidingSpeed) {
+  const Upsetting u;
+  const Lifted lifted(u);
+  const double mu = 0.12, s = u.scene.contact.penalty_scale, dt = Lifted::dt;
+  const double slip = 4 * mu * s * lifted.depth_max / (0.5 * dt), stick = 0.5 * mu * s * lifted.depth_min / dt;
+  for (double sign : {1.0, -1.0})
+    for (double speed : {slip, stick}) {
+      const double v[3] = {sign * speed, 0, 0};
+      rk::State st = Lifted::state(u.md, v);
+      rk::DieContact contact(u.md, with_friction(u, mu), u.dies);
+      contact.compute(u.md, st, 0.0, dt);
+      const double ft = std::abs(contact.totals()[0].force[0]);
+      ASSERT_GT(ft, 0.0);
+      // still sliding at the same speed after the step: the work is dt |F_t| v
+      const std::vector<double> v_old = st.v;
+      contact.account(u.md, st, v_old, dt, 0.0);
+      const double w1 = contact.totals()[0].friction_work;
+      EXPECT_GE(w1, 0.0);
+      EXPECT_NEAR(w1 / (dt * ft * speed), 1.0, 1e-9) << "sign " << sign << ", speed " << speed;
+      // the sliding stopped by the end of the step: the mean speed is half, and so is the work
+      for (std::size_t k = 0; k < st.v.size(); k += 3) st.v[k] = 0;
+      contact.account(u.md, st, v_old, dt, 0.0);
+      EXPECT_NEAR((contact.totals()[0].friction_work - w1) / (0.5 * dt * ft * speed), 1.0, 1e-9);
+    }
 }
 
 }  // namespace

@@ -1,0 +1,72 @@
+"""rksolve's health stops, each triggered on a coarse Taylor bar (1.6 mm spacing, 399 particles, 2 ranks,
+10 us) by a --set override: the run exits non-zero with one message that names the reason and says
+"last frame written", and that frame is on disk, on every rank, at the step and time the message gives.
+- health.max_energy_error = 1e-4: the bar's energy error is 5.5e-4 of the initial kinetic energy
+  at 1 us and stays above 1e-4 (measured), so the check (active after 10 % of time.end) stops it;
+- health.min_dt_ratio = 0.99: the stable step falls to 0.985 of the initial one within 2 steps of
+  the impact (measured), below the ratio;
+- an initial velocity of 20 km/s with health.min_dt_ratio = 0 (the step collapse check off): the
+  impact face's cells flatten within one step, det F <= 0 at an integration point.
+The same bar without an override runs to the end (exit 0, energy error below the default 5 %), so
+each stop is the override's."""
+import re
+import shutil
+
+import h5py
+
+import rkcase
+
+tools = rkcase.tools_from_argv()
+prep = tools.case("health_prep")
+tools.prep(prep, 2, sets=["discretization.spacing=1.6e-3"])
+base = ["time.end=10e-6", "time.output_interval=5e-6"]
+number = r"([-+0-9.eE]+)"
+
+
+def run(name, sets):
+    """Solves the prepared bar in its own folder (a copy of the prep) with the overrides."""
+    case = tools.case(name)
+    shutil.copytree(prep, case)
+    return case, tools.solve(case, 2, sets=base + sets, expect_ok=False, timeout=300)
+
+
+def newest_frames(case):
+    """The newest frame of each rank: (step, time) pairs."""
+    out = []
+    for rank in sorted((case / "results").glob("rank_*")):
+        newest = sorted(rank.glob("frame_*.h5"))[-1]
+        with h5py.File(newest, "r") as f:
+            g = f["frames"][newest.stem.split("_")[1]]
+            out.append((int(g["step"][()].ravel()[0]), float(g["time"][()].ravel()[0])))
+    return out
+
+
+case, p = run("health_none", [])
+rows = (case / "history.csv").read_text().splitlines()
+rkcase.check(p.returncode == 0 and "error" not in p.stderr, f"without an override the bar runs to 10 us ({len(rows) - 1} history rows)")
+
+stops = [
+    ("energy", ["health.max_energy_error=1e-4"],
+     rf"energy error {number} exceeds health\.max_energy_error = 0\.0001 at step (\d+), t = {number} s \(last frame written\)"),
+    ("dt", ["health.min_dt_ratio=0.99"],
+     rf"the stable time step collapsed to {number} s \({number} of the initial step\) at step (\d+), t = {number} s, "
+     r"in the cell of particle \d+ at .* \(last frame written\)"),
+    ("detF", ["health.min_dt_ratio=0", "initial_conditions.velocity=[0,0,-20000]"],
+     rf"rank \d: det F = {number} at step (\d+), t = {number} s, near particle \d+ at .* \(last frame written\)"),
+]
+for name, sets, pattern in stops:
+    case, p = run(f"health_{name}", sets)
+    errors = [ln for ln in (p.stdout + p.stderr).splitlines() if "rksolve: error" in ln]
+    m = re.search(pattern, errors[0]) if errors else None
+    rkcase.check(p.returncode != 0 and len(errors) == 1 and m is not None,
+                 f"{' '.join(sets)}: exit {p.returncode}, one message: {errors[0] if errors else '(none)'}")
+    step, t = int(m.group(m.lastindex - 1)), float(m.group(m.lastindex))
+    if name == "energy":
+        rkcase.check(float(m.group(1)) > 1e-4 and t > 1e-6, f"energy error {float(m.group(1)):.2e} > 1e-4 after 10 % of time.end")
+    elif name == "dt":
+        rkcase.check(float(m.group(2)) < 0.99, f"step ratio {float(m.group(2)):.4f} < 0.99")
+    else:
+        rkcase.check(float(m.group(1)) <= 0, f"det F = {float(m.group(1)):.2e} <= 0")
+    frames = newest_frames(case)  # the message prints t to 6 significant digits
+    rkcase.check(len(frames) == 2 and all(s == step and abs(ft - t) <= 1e-5 * t for s, ft in frames),
+                 f"{name}: the last frame of each rank is at the stop, step {step}, t = {t:.6g} s: {frames}")
