@@ -27,7 +27,8 @@ def run(name, sets):
     """Solves the prepared bar in its own folder (a copy of the prep) with the overrides."""
     case = tools.case(name)
     shutil.copytree(prep, case)
-    return case, tools.solve(case, 2, sets=base + sets, expect_ok=False, timeout=300)
+    # each run takes 1-2 s; a stop that fails to come would run for ever at a tiny step
+    return case, tools.solve(case, 2, sets=base + sets, expect_ok=False, timeout=120)
 
 
 def newest_frames(case):
