@@ -118,7 +118,7 @@ rkcase.check(f"{prep['particles']} / {prep['cells']}" in report and "energy bala
 rows = list(csv.DictReader(open(case / "history.csv")))
 solve = json.loads((case / "solve.json").read_text())
 ke0 = solve["initial_kinetic_energy"]
-# the figures the bench builds on (issue 7): plastic share of the stress updates, neighbours, memory
+# the figures the bench builds on: plastic share of the stress updates, neighbours, memory
 rkcase.check(0 < solve["plastic_fraction"] < 1, f"plastic share of the updates {solve['plastic_fraction']:.3f} in (0, 1)")
 rkcase.check(20 < solve["neighbours_per_point"] < 80, f"neighbours per point {solve['neighbours_per_point']:.1f}")
 rkcase.check(0 < solve["resident_bytes_per_point"] <= solve["peak_bytes_per_point"] < 1e5,
