@@ -62,6 +62,12 @@ void material_position(const Model& md, const State& st, std::size_t I, double x
   add_row(st, md.material_cols.data(), md.material_N.data(), md.material_offsets[I], md.material_offsets[I + 1], x);
 }
 
+void material_velocity(const Model& md, const std::vector<double>& v, std::size_t I, double vh[3]) {
+  vh[0] = vh[1] = vh[2] = 0;
+  for (auto k = md.material_offsets[I]; k < md.material_offsets[I + 1]; ++k)
+    for (int i = 0; i < 3; ++i) vh[i] += md.material_N[std::size_t(k)] * v[3 * std::size_t(md.material_cols[std::size_t(k)]) + i];
+}
+
 void constrained_displacement(const Model& md, const State& st, std::size_t q, double uh[3]) {
   row_displacement(st, std::size_t(md.ebc_particles[q]), md.ebc_cols.data(), md.ebc_N.data(), md.ebc_offsets[q],
                    md.ebc_offsets[q + 1], uh);

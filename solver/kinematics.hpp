@@ -20,6 +20,9 @@ void constrained_displacement(const Model& md, const State& st, std::size_t q, d
 // The same at owned particle I from its row md.material_*.
 void material_displacement(const Model& md, const State& st, std::size_t I, double uh[3]);
 
+// v^h(X_I) = sum_J N_J(X_I) v_J at owned particle I (its row md.material_*), from the velocities v.
+void material_velocity(const Model& md, const std::vector<double>& v, std::size_t I, double vh[3]);
+
 // Owned particle I's material position X_I^ref + u^h(X_I) since the last update (its row md.material_*),
 // the counterpart of point_position.
 void material_position(const Model& md, const State& st, std::size_t I, double x[3]);

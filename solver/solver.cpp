@@ -379,9 +379,26 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       // first-order work of freshly engaged contacts dominates their ratio.
       if (last_error > scene.health.max_energy_error && st.t > 0.1 * t_end) {
         write_frame(st.v);
+        // Where the energy grows: an unstable mode of the discretization moves the coefficients in a
+        // pattern the field does not carry, so it shows as |v_I - v^h(X_I)|, largest at the mode.
+        double worst = -1;
+        std::int32_t where = -1;
+        for (std::size_t I = 0; I < md.n; ++I) {
+          if (!md.owned[I]) continue;
+          double vh[3], d2 = 0;
+          material_velocity(md, st.v, I, vh);
+          for (int i = 0; i < 3; ++i) d2 += (st.v[3 * I + i] - vh[i]) * (st.v[3 * I + i] - vh[i]);
+          if (d2 > worst) worst = d2, where = std::int32_t(I);
+        }
+        double largest = worst;
+        comm.max(&largest, 1);
         std::ostringstream why;
         why << "energy error " << last_error << " exceeds health.max_energy_error = " << scene.health.max_energy_error
-            << " at step " << st.step << ", t = " << st.t << " s (last frame written); reduce time.cfl";
+            << " at step " << st.step << ", t = " << st.t << " s (last frame written)";
+        if (where >= 0)
+          why << "; the velocity the field does not carry is largest at " << describe_particle(md, st, where) << " ("
+              << std::sqrt(std::max(worst, 0.0)) << " m/s): an unstable mode there; reduce time.cfl";
+        comm.check(where < 0 || worst < largest, why.str());
         comm.check(false, why.str());
       }
     }

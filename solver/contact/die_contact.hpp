@@ -15,7 +15,9 @@
 // Rigid walls are frictionless fixed planes for the same slaves (a wall that held the coefficients
 // kinematically let the field at the impact face's rim reach through it, and the same Taylor bar read
 // a footprint 3 % apart from the one held on a flat die).
-// Symmetry planes are frictionless fixed planes for the same slaves: the nodal EBCs hold the
+// Symmetry planes are frictionless fixed planes for the same slaves, except the particles (and nodal
+// points) lying on the plane, which the EBCs hold both ways (a one-sided hold on them biased the
+// material away from the plane: the quarter Taylor bar 1.3 % wider). The nodal EBCs hold the
 // coefficients of the particles on a plane, not the field, and a die that presses the field near
 // a plane pushed it across (back extrusion's punch corner: integration points 4.8 mm past y = 0 at
 // 12 mm of stroke, then a singular moment matrix).
