@@ -93,11 +93,11 @@ TEST(DieContact, SkippedLookupsFindTheSameContactsAsLookingUpEverySlave) {
   rk::DieContact kept(md, u.scene, u.dies);
   const double dt = 3e-6;
   std::int64_t touched = 0, crossed = 0;
-  for (int n = 0; n < 400; ++n) {  // the material sways (up to 0.3 mm, unevenly) while the die comes down 1.1 mm
+  for (int n = 0; n < 400; ++n) {  // the material sways (up to 0.8 mm, unevenly) while the die comes down 1.1 mm
     const double t = n * dt;
     for (std::size_t I = 0; I < md.n; ++I) {
       const double* X = &md.X[3 * I];
-      st.u[3 * I] = 2e-4 * std::sin(t / 4e-5) * X[2] / 10e-3;
+      st.u[3 * I] = 8e-4 * std::sin(t / 4e-5) * X[2] / 10e-3;  // past the points nearest x = 0 (0.53 mm)
       st.u[3 * I + 2] = 0.3e-3 * (0.6 + 0.4 * std::cos(X[0] / 3e-3 + t / 1e-4));
       st.v[3 * I] = 1.0, st.v[3 * I + 2] = -0.5;
     }
@@ -167,13 +167,22 @@ TEST(DieContact, SymmetryPlanesHoldTheMaterialThatCrossesThem) {
   ASSERT_EQ(contact.totals().size(), 2u) << "the die, then the planes";
   const rk::DieTotals& planes = contact.totals()[1];
 
-  double expected = 0;
-  std::int64_t particles = 0, points = 0;
-  for (std::size_t I = 0; I < md.n; ++I)
-    if (md.X[3 * I] - shift < 0) ++particles, expected += s * md.mass[I] / (dt * dt) * (shift - md.X[3 * I]);
+  // The particles on x = 0 are the plane's own, held both ways by the essential BCs, not by the plane.
+  double expected = 0, deepest = 0;
+  std::int64_t particles = 0, points = 0, own = 0;
+  for (std::size_t I = 0; I < md.n; ++I) {
+    if (md.X[3 * I] == 0) ++own;
+    else if (md.X[3 * I] - shift < 0) ++particles, expected += s * md.mass[I] / (dt * dt) * (shift - md.X[3 * I]);
+  }
   for (std::size_t g = 0; g < md.m; ++g)
-    if (md.point_X[3 * g] - shift < 0) ++points, expected += s * md.density * md.weight[g] / (dt * dt) * (shift - md.point_X[3 * g]);
+    if (md.point_X[3 * g] - shift < 0) {
+      ++points, expected += s * md.density * md.weight[g] / (dt * dt) * (shift - md.point_X[3 * g]);
+      deepest = std::max(deepest, shift - md.point_X[3 * g]);
+    }
   ASSERT_GT(points, 0);
+  ASSERT_GT(own, 0);
+  EXPECT_NEAR(contact.symmetry_depth(), deepest, 1e-15) << "the health check's depth";
+  EXPECT_GE(contact.deepest_particle(md), 0);
   EXPECT_EQ(contact.totals()[0].contacts + contact.totals()[0].point_contacts, 0) << "nothing reaches the die";
   EXPECT_EQ(planes.contacts, particles);
   EXPECT_EQ(planes.point_contacts, points);
