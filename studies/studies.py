@@ -44,6 +44,7 @@ TAYLOR_ELASTIC = "taylor_bar/scene_elastic.yaml"
 UPSET = "upsetting/scene.yaml"
 UPSET_FRICTION = "upsetting/scene_friction.yaml"
 THIN_WALL = "thin_wall/scene.yaml"
+BEAM = "beam/scene.yaml"
 # converged finite-element values at 80 us (BENCHMARKS.md case 1): the reference for the errors
 TAYLOR_REF = {"footprint_radius_mm": 7.22, "final_length_mm": 21.45}
 SEED_SPEEDUP = {2: 1.81, 4: 3.21, 8: 6.41, 16: 10.39, 32: 24.14}  # seed, Taylor bar (BENCHMARKS.md 6)
@@ -142,6 +143,10 @@ def stability():
         for across, h_wall in ((2, 1.2), (3, 0.6)):
             cases.append(Case(f"thin_wall_{across}_across", scene=THIN_WALL, prep=[f"discretization.spacing={h_wall}e-3"],
                               solve=["time.end=40e-6", "time.output_interval=10e-6"], label=f"thin wall, {across} across"))
+        # a long elastic run: the clamped beam vibrating freely for about 10^5 steps (scripts/beam_check.py)
+        for cfl in (0.9, 0.8, 0.65, 0.5):
+            cases.append(Case(f"beam_cfl_{cfl}", scene=BEAM, solve=[f"time.cfl={cfl}", "output.checkpoint_steps=0"],
+                              label=f"beam, 40 ms, cfl {cfl}"))
     return cases
 
 
