@@ -251,7 +251,9 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       std::ostringstream why;
       if (!health.ok)
         why << "rank " << comm.rank() << ": det F = " << health.J << " at step " << st.step << ", t = " << st.t
-            << " s, near " << describe_particle(md, st, md.nbr[md.nbr_offsets[health.point]]);
+            << " s, near " << describe_particle(md, st, md.nbr[md.nbr_offsets[health.point]])
+            << (health.J > 0 ? " (the material's volume ratio; outside (0.5, 2) no solid metal is, the state is not physical)"
+                             : "");
       else
         why << "rank " << comm.rank() << ": non-finite forces at step " << st.step << ", t = " << st.t << " s";
       write_frame(st.v);

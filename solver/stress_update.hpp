@@ -13,6 +13,9 @@
 
 namespace rk {
 
+// The material's volume ratio J below which (or above whose inverse) the state is not physical.
+inline constexpr double kMinVolumeRatio = 0.5;
+
 struct StressHealth {
   bool ok = true;
   std::size_t point = 0;  // first failing point

@@ -6,7 +6,8 @@
 - health.min_dt_ratio = 0.99: the stable step falls to 0.985 of the initial one within 2 steps of
   the impact (measured), below the ratio;
 - an initial velocity of 20 km/s with health.min_dt_ratio = 0 (the step collapse check off): the
-  impact face's cells flatten within one step, det F <= 0 at an integration point.
+  impact face's cells flatten: the material's volume ratio leaves (0.5, 2) (a pressure no solid
+  metal reaches: measured 0.18 at step 3) before any det F reaches 0, and the run stops there.
 The same bar without an override runs to the end (exit 0, energy error below the default 5 %), so
 each stop is the override's."""
 import re
@@ -48,7 +49,8 @@ rkcase.check(p.returncode == 0 and "error" not in p.stderr, f"without an overrid
 
 stops = [
     ("energy", ["health.max_energy_error=1e-4"],
-     rf"energy error {number} exceeds health\.max_energy_error = 0\.0001 at step (\d+), t = {number} s \(last frame written\)"),
+     rf"energy error {number} exceeds health\.max_energy_error = 0\.0001 at step (\d+), t = {number} s \(last frame written\); "
+     r"the velocity the field does not carry is largest at particle \d+ at "),
     ("dt", ["health.min_dt_ratio=0.99"],
      rf"the stable time step collapsed to {number} s \({number} of the initial step\) at step (\d+), t = {number} s, "
      r"in the cell of particle \d+ at .* \(last frame written\)"),
@@ -67,7 +69,9 @@ for name, sets, pattern in stops:
     elif name == "dt":
         rkcase.check(float(m.group(2)) < 0.99, f"step ratio {float(m.group(2)):.4f} < 0.99")
     else:
-        rkcase.check(float(m.group(1)) <= 0, f"det F = {float(m.group(1)):.2e} <= 0")
+        J = float(m.group(1))
+        rkcase.check(0 < J < 0.5 and "the state is not physical" in p.stderr,
+                     f"det F = {J:.2e}: the volume ratio below 0.5 stops the run before det F reaches 0")
     frames = newest_frames(case)  # the message prints t to 6 significant digits
     rkcase.check(len(frames) == 2 and all(s == step and abs(ft - t) <= 1e-5 * t for s, ft in frames),
                  f"{name}: the last frame of each rank is at the stop, step {step}, t = {t:.6g} s: {frames}")
