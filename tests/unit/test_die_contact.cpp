@@ -29,7 +29,7 @@
 #include "contact/die_contact.hpp"
 #include "die_surface.hpp"
 #include "discretize.hpp"
-#include "local_shapes.hpp"
+#include "material_above.hpp"
 #include "model.hpp"
 #include "partition.hpp"
 #include "scene.hpp"
@@ -132,22 +132,11 @@ TEST(DieContact, TheDiesHoldTheMaterialAtTheParticlesNotTheirCoefficients) {
   rk::DieContact contact(md, u.scene, u.dies);
   contact.compute(md, st, 0.0, dt);
 
-  const rk::LocalShapes shapes(md.X, md.volume, md.spacing, u.scene);
-  std::int64_t material = 0, coefficients = 0;
-  std::vector<std::int32_t> cols;
-  std::vector<double> N, dN;
-  for (std::size_t I = 0; I < md.n; ++I) {
-    cols.clear(), N.clear(), dN.clear();
-    ASSERT_TRUE(shapes.append(&md.X[3 * I], cols, N, dN).regular);
-    double uz = 0;
-    for (std::size_t k = 0; k < cols.size(); ++k) uz += N[k] * st.u[3 * std::size_t(cols[k]) + 2];
-    material += md.X[3 * I + 2] + uz > top;
-    coefficients += md.X[3 * I + 2] + st.u[3 * I + 2] > top;
-  }
-  ASSERT_GT(material, 0);
-  ASSERT_EQ(coefficients, 1);
-  ASSERT_GT(material, 1) << "the raised coefficient lifts the material around it into the die";
-  EXPECT_EQ(contact.totals()[0].contacts, material);
+  const AboveCount above = count_above(md, u.scene, st, top);
+  ASSERT_TRUE(above.regular);
+  ASSERT_EQ(above.coefficients, 1);
+  ASSERT_GT(above.material, 1) << "the raised coefficient lifts the material around it into the die";
+  EXPECT_EQ(contact.totals()[0].contacts, above.material);
 }
 
 TEST(DieContact, SymmetryPlanesHoldTheMaterialThatCrossesThem) {

@@ -13,7 +13,7 @@
 #include "cad_mesh.hpp"
 #include "contact/die_contact.hpp"
 #include "discretize.hpp"
-#include "local_shapes.hpp"
+#include "material_above.hpp"
 #include "model.hpp"
 #include "partition.hpp"
 #include "scene.hpp"
@@ -58,21 +58,11 @@ TEST(RigidWall, HoldsTheMaterialAtTheParticlesNotTheirCoefficients) {
   contact.compute(md, st, 0.0, dt);
   ASSERT_EQ(contact.totals().size(), 2u) << "the wall, then the symmetry planes";
 
-  const rk::LocalShapes shapes(md.X, md.volume, md.spacing, w.scene);
-  std::int64_t material = 0, coefficients = 0;
-  std::vector<std::int32_t> cols;
-  std::vector<double> N, dN;
-  for (std::size_t I = 0; I < md.n; ++I) {
-    cols.clear(), N.clear(), dN.clear();
-    ASSERT_TRUE(shapes.append(&md.X[3 * I], cols, N, dN).regular);
-    double uz = 0;
-    for (std::size_t k = 0; k < cols.size(); ++k) uz += N[k] * st.u[3 * std::size_t(cols[k]) + 2];
-    material += md.X[3 * I + 2] + uz > kTop;
-    coefficients += md.X[3 * I + 2] + st.u[3 * I + 2] > kTop;
-  }
-  ASSERT_EQ(coefficients, 1);
-  ASSERT_GT(material, 1) << "the raised coefficient lifts the material around it through the wall";
-  EXPECT_EQ(contact.totals()[0].contacts, material);
+  const AboveCount above = count_above(md, w.scene, st, kTop);
+  ASSERT_TRUE(above.regular);
+  ASSERT_EQ(above.coefficients, 1);
+  ASSERT_GT(above.material, 1) << "the raised coefficient lifts the material around it through the wall";
+  EXPECT_EQ(contact.totals()[0].contacts, above.material);
   EXPECT_GT(contact.wall_force(0), 0.0) << "the wall pushes the material back into the part";
 }
 
