@@ -1,0 +1,53 @@
+#!/usr/bin/python3
+"""The elastic bar onto a rigid wall (geometry/elastic_bar) from history.csv and prep.json: the
+contact time (first to last history row with a wall force) against 2 L / c0, and the rebound speed
+from the wall's impulse, v_out = integral F dt / M - v_in (M the modeled part's mass), against v_in
+(an elastic bar on a rigid wall leaves at the speed it came). Usage:
+  elastic_bar_check.py CASE [--json]
+"""
+import argparse
+import csv
+import json
+import math
+import sys
+from pathlib import Path
+
+L, E, RHO, V_IN = 0.1, 71.0e9, 2700.0, 5.0  # the scene's bar
+C0 = math.sqrt(E / RHO)
+
+
+def check(case: Path) -> dict:
+    rows = list(csv.DictReader(open(case / "history.csv")))
+    prep = json.loads((case / "prep.json").read_text())
+    t = [float(r["time"]) for r in rows]
+    f = [float(r["wall.force"]) for r in rows]
+    on = [k for k, v in enumerate(f) if v > 0]
+    impulse = sum(0.5 * (f[k] + f[k + 1]) * (t[k + 1] - t[k]) for k in range(len(t) - 1))
+    mass = RHO * prep["volume_m3"]
+    v_out = impulse / mass - V_IN
+    contact = t[on[-1]] - t[on[0]] if on else 0.0
+    peak_stress = max(f) / (prep["volume_m3"] / L)  # the force over the modeled section
+    return {"contact_time_s": contact, "contact_time_exact_s": 2 * L / C0, "contact_time_error": contact / (2 * L / C0) - 1,
+            "rebound_speed_m_s": v_out, "rebound_error": v_out / V_IN - 1,
+            "contact_stress_pa": peak_stress, "contact_stress_exact_pa": RHO * C0 * V_IN,
+            "still_in_contact": bool(f[-1] > 0), "max_energy_error": max(float(r["energy_error"]) for r in rows)}
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("case", type=Path)
+    ap.add_argument("--json", action="store_true")
+    a = ap.parse_args()
+    r = check(a.case)
+    if a.json:
+        print(json.dumps(r, indent=2))
+    else:
+        print(f"contact time {1e6 * r['contact_time_s']:.2f} us against 2L/c0 = {1e6 * r['contact_time_exact_s']:.2f} us "
+              f"({100 * r['contact_time_error']:+.2f} %); rebound {r['rebound_speed_m_s']:.3f} m/s against {V_IN} "
+              f"({100 * r['rebound_error']:+.2f} %); peak contact stress {r['contact_stress_pa'] / 1e6:.1f} MPa against "
+              f"rho c0 v = {r['contact_stress_exact_pa'] / 1e6:.1f} MPa; largest energy error {100 * r['max_energy_error']:.3f} %")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
