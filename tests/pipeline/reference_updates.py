@@ -1,7 +1,7 @@
 """Reference-configuration updates (solver/reference_update.hpp) on the Taylor bar:
 (1) at the seed's resolution the footprint radius and final length stay within 8 % and 2 % of the
 total-Lagrangian run (measured -4.1 % and +0.9 %: the updated discretization is not yet as
-accurate as the total-Lagrangian one on this bar, see README), with
+accurate as the total-Lagrangian one on this bar, see docs/validation.md), with
 several updates, in fewer steps (the stable step no longer falls with the points' stretch since t = 0;
 it keeps the cells' compression before an update, so the ratio is 0.506 measured on 2026-12-01, 0.55
 allowed), and
@@ -40,7 +40,7 @@ def last_frame(case):
 
 # (1) accuracy against the total-Lagrangian run, at the seed's resolution (0.9 mm, 1369 particles),
 # at CFL 0.5, where the bounds were measured; at the default 0.9 the updates smooth away about as
-# much kinetic energy (5.8 % against 5.9 %; r_f -4.7 %, L_f +0.9 %), README "Reference-configuration updates"
+# much kinetic energy (5.8 % against 5.9 %; r_f -4.7 %, L_f +0.9 %), docs/validation.md "Reference-configuration updates"
 tl_case, tl = run("tl", 2, ["time.cfl=0.5"], spacing=[])
 up_case, up = run("updated", 2, [updates, "time.cfl=0.5"], spacing=[])
 a, b = taylor_metrics.metrics(tl_case), taylor_metrics.metrics(up_case)
