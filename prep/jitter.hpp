@@ -1,4 +1,4 @@
-// Irregular particle layouts for the stability study (issue 6): every interior particle moves by a
+// Irregular particle layouts for the stability study: every interior particle moves by a
 // pseudo-random offset of up to `fraction` x its spacing along each axis. Surface particles stay on
 // the surface; the integration cells and points stay where the mesh put them, so only the particle
 // layout (the shape functions) becomes irregular. Deterministic: the same scene gives the same

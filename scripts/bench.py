@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""make bench: the performance targets of issue 7, measured in one run on this machine.
+"""make bench: the performance targets (docs/performance.md), measured in one run on this machine.
 
 1. machine: one core's memory bandwidth and peak flop rate (build/bin/rkmachine);
 2. seed: the seed-resolution Taylor bar (1369 particles) to 80 us on one rank, setup included, with the

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The seed's Taylor bar in CalculiX (ccx explicit dynamics), for the bench's side-by-side (issue 7).
+"""The seed's Taylor bar in CalculiX (ccx explicit dynamics), for the bench's side-by-side.
 
 The seed compared its RKPM bar with LS-DYNA on 1200 hexahedra; this runs the same quarter bar
 (radius 3.2 mm, length 32.4 mm, OFHC copper of seed Table 1, 227 m/s onto a rigid frictionless

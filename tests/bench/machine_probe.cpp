@@ -1,4 +1,4 @@
-// rkmachine: what one core of this machine can do, for the bench's machine-limit estimate (issue 7).
+// rkmachine: what one core of this machine can do, for the bench's machine-limit estimate.
 // Measures the memory bandwidth (STREAM triad a = b + s c, 24 bytes per element as STREAM counts
 // them) for working sets from cache-sized to DRAM-sized, and the peak double-precision rate of
 // independent multiply-add chains, both as this build compiles them (the project's flags: the

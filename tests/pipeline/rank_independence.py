@@ -1,4 +1,4 @@
-"""The answer does not depend on the rank count (issue 2 / DESIGN.md section 4): a coarse Taylor bar
+"""The answer does not depend on the rank count (DESIGN.md section 4): a coarse Taylor bar
 for a few hundred steps on 1, 2, 3 and 4 ranks (oversubscribed) gives, per global id, bitwise the
 same positions, velocities and plastic strain as on one rank. Each rank writes only its owned
 particles and rkpost merges every particle exactly once, with `rank` = its owner. Both EBC methods, and

@@ -1,4 +1,4 @@
-"""Checkpoint and restart lose nothing (issue 8): (1) a run stopped at 4 us and restarted to 8 us
+"""Checkpoint and restart lose nothing: (1) a run stopped at 4 us and restarted to 8 us
 ends bitwise equal to the uninterrupted run, frames and all; (2) a rank killed with SIGKILL mid-run
 stops the whole job quickly, leaves the last good checkpoint, and the restart from it ends bitwise
 equal to the uninterrupted run; (3) a job killed between its ranks' checkpoint writes (one rank a

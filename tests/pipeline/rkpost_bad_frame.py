@@ -1,4 +1,4 @@
-"""rkpost with damaged results (issue 8): one rank's frame whose bytes were changed on disk is
+"""rkpost with damaged results: one rank's frame whose bytes were changed on disk is
 reported, naming the file and the dataset, and skipped; a frame file missing on a rank is reported
 and skipped; every other frame is still merged and rkpost exits 0. rksolve writes each frame whole
 (temporary name, fsync, rename), so a killed run leaves no half-written frame file behind."""

@@ -1,4 +1,4 @@
-"""What users open and look at (issue 9): rkpost's VTK files read back by ParaView's own readers
+"""What users open and look at: rkpost's VTK files read back by ParaView's own readers
 through pvpython, the pictures rendered off-screen by pvbatch, and report.md.
 
 A 2-rank case with a die (the sliding block on its floor): every frame of case.pvd, read by

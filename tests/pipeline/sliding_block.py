@@ -1,4 +1,4 @@
-"""Coulomb friction against the closed form (issue 4): an elastic block slides on a rigid floor under
+"""Coulomb friction against the closed form: an elastic block slides on a rigid floor under
 a body force g = 1e5 m/s^2 with v0 = 10 m/s and mu = 0.5. Closed form: v = v0 - mu g t, sliding
 distance v0 t - mu g t^2 / 2 until it stops at t = v0 / (mu g) = 0.2 ms, 1.0 mm from where it was."""
 import meshio

@@ -1,4 +1,4 @@
-// The exact essential BCs' constraint system (issue 5): real RK rows N_J(X_I) of the particles on two
+// The exact essential BCs' constraint system: real RK rows N_J(X_I) of the particles on two
 // faces of a 12^3 lattice (a fixed face: three directions each; a symmetry plane of non-axis normal
 // where it meets it), lumped masses of +-30 %. Both SuiteSparse backends must enforce C v = c to
 // round-off and agree on the multipliers; their set-up and per-solve times are printed (measured

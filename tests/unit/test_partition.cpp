@@ -1,4 +1,4 @@
-// Partition invariants (issue 2/3): every cell on exactly one rank, overlap maps symmetric between the
+// Partition invariants: every cell on exactly one rank, overlap maps symmetric between the
 // two ranks of each pair and in ascending global id, every support particle present on the rank whose
 // points need it, exactly one owner per particle and the owner holds it.
 #include <gtest/gtest.h>
