@@ -5,12 +5,12 @@ f1 = (1.8751^2 / (2 pi L^2)) sqrt(E I / (rho A)), and the energy's drift over th
 mode of the discretization shows as growth). Usage:
   beam_check.py CASE [--json]
 """
-import argparse
 import csv
 import json
 import math
-import sys
 from pathlib import Path
+
+from case_check import main_of
 
 L, B, E, RHO = 0.2, 0.01, 71.0e9, 2700.0  # the scene's beam
 F1 = 1.8751 ** 2 / (2 * math.pi * L ** 2) * math.sqrt(E * B ** 4 / 12 / (RHO * B ** 2))
@@ -31,20 +31,11 @@ def check(case: Path) -> dict:
             "energy_end_over_start": total[-1] / max(total[1], 1e-300)}
 
 
-def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("case", type=Path)
-    ap.add_argument("--json", action="store_true")
-    a = ap.parse_args()
-    r = check(a.case)
-    if a.json:
-        print(json.dumps(r, indent=2))
-    else:
-        print(f"beam to {1e3 * r['time_s']:.1f} ms ({r['steps']} steps): f1 {r['f1_hz']:.1f} Hz against {r['f1_beam_hz']:.1f} Hz "
-              f"({100 * r['f1_error']:+.2f} %), largest energy error {100 * r['max_energy_error']:.3f} %, "
-              f"energy end/start {r['energy_end_over_start']:.4f}")
-    return 0
+def summary(r: dict) -> str:
+    return (f"beam to {1e3 * r['time_s']:.1f} ms ({r['steps']} steps): f1 {r['f1_hz']:.1f} Hz against {r['f1_beam_hz']:.1f} Hz "
+            f"({100 * r['f1_error']:+.2f} %), largest energy error {100 * r['max_energy_error']:.3f} %, "
+            f"energy end/start {r['energy_end_over_start']:.4f}")
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main_of(__doc__, check, summary)

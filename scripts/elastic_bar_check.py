@@ -5,12 +5,12 @@ from the wall's impulse, v_out = integral F dt / M - v_in (M the modeled part's 
 (an elastic bar on a rigid wall leaves at the speed it came). Usage:
   elastic_bar_check.py CASE [--json]
 """
-import argparse
 import csv
 import json
 import math
-import sys
 from pathlib import Path
+
+from case_check import main_of
 
 L, E, RHO, V_IN = 0.1, 71.0e9, 2700.0, 5.0  # the scene's bar
 C0 = math.sqrt(E / RHO)
@@ -33,21 +33,12 @@ def check(case: Path) -> dict:
             "still_in_contact": bool(f[-1] > 0), "max_energy_error": max(float(r["energy_error"]) for r in rows)}
 
 
-def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("case", type=Path)
-    ap.add_argument("--json", action="store_true")
-    a = ap.parse_args()
-    r = check(a.case)
-    if a.json:
-        print(json.dumps(r, indent=2))
-    else:
-        print(f"contact time {1e6 * r['contact_time_s']:.2f} us against 2L/c0 = {1e6 * r['contact_time_exact_s']:.2f} us "
-              f"({100 * r['contact_time_error']:+.2f} %); rebound {r['rebound_speed_m_s']:.3f} m/s against {V_IN} "
-              f"({100 * r['rebound_error']:+.2f} %); peak contact stress {r['contact_stress_pa'] / 1e6:.1f} MPa against "
-              f"rho c0 v = {r['contact_stress_exact_pa'] / 1e6:.1f} MPa; largest energy error {100 * r['max_energy_error']:.3f} %")
-    return 0
+def summary(r: dict) -> str:
+    return (f"contact time {1e6 * r['contact_time_s']:.2f} us against 2L/c0 = {1e6 * r['contact_time_exact_s']:.2f} us "
+            f"({100 * r['contact_time_error']:+.2f} %); rebound {r['rebound_speed_m_s']:.3f} m/s against {V_IN} "
+            f"({100 * r['rebound_error']:+.2f} %); peak contact stress {r['contact_stress_pa'] / 1e6:.1f} MPa against "
+            f"rho c0 v = {r['contact_stress_exact_pa'] / 1e6:.1f} MPa; largest energy error {100 * r['max_energy_error']:.3f} %")
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main_of(__doc__, check, summary)

@@ -1,4 +1,4 @@
-// For the contact tests: how many particles have their material, X_I + u^h(X_I) with u^h evaluated
+// For the contact tests. How many particles have their material, X_I + u^h(X_I) with u^h evaluated
 // from the RK shape functions directly (not from the model's stored rows), above the plane z = top,
 // and how many have their coefficient X_I + d_I there.
 #pragma once
@@ -29,4 +29,22 @@ inline AboveCount count_above(const rk::Model& md, const rk::Scene& scene, const
     c.coefficients += md.X[3 * I + 2] + st.u[3 * I + 2] > top;
   }
   return c;
+}
+
+// A rigid lift of every coefficient by `lift` along z through the plane z = top: the particles and
+// points it carries past the plane, and the sum of their penalty forces s m / dt^2 times their depth
+// (m: a particle's mass, or rho w_g at a point). A translation moves the material like the particles.
+struct LiftedPast {
+  std::int64_t particles = 0, points = 0;
+  double force = 0;
+};
+
+inline LiftedPast lifted_past(const rk::Model& md, double lift, double top, double s, double dt) {
+  LiftedPast r;
+  for (std::size_t I = 0; I < md.n; ++I)
+    if (md.X[3 * I + 2] + lift > top) ++r.particles, r.force += s * md.mass[I] / (dt * dt) * (md.X[3 * I + 2] + lift - top);
+  for (std::size_t g = 0; g < md.m; ++g)
+    if (md.point_X[3 * g + 2] + lift > top)
+      ++r.points, r.force += s * md.density * md.weight[g] / (dt * dt) * (md.point_X[3 * g + 2] + lift - top);
+  return r;
 }
