@@ -26,7 +26,7 @@ def main(case: Path) -> None:
     for a, key, label in ((ax[0], "footprint_radius_mm", "impact-face radius (mm)"),
                           (ax[1], "final_length_mm", "length (mm)")):
         a.plot(t, [m[key] for m in series], "o-", label="rkforge")
-        a.plot(HISTORY_US, HISTORY[key], "k--", lw=1, label="converged FE history (Foulk et al. 2021, h = 0.19 mm)")
+        a.plot(HISTORY_US, HISTORY[key], "k--", lw=1, label="converged FE history (composite tetrahedron, h = 0.19 mm)")
         a.plot([80], [REFERENCE[key]["converged"]], "*", ms=10, label="converged FE (80 us)")
         a.plot([80], [REFERENCE[key]["seed_rkpm"]], "s", label="2007 paper RKPM (80 us)")
         a.plot([80], [REFERENCE[key]["seed_fem"]], "^", label="2007 paper FEM, LS-DYNA (80 us)")

@@ -436,6 +436,15 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     t.done();
   }
   {
+    // on by default (LS-DYNA's 1.5 and 0.06) where compression can be fast; off in a mass-scaled
+    // (quasi-static) run, which has no shocks and whose scaled density would inflate q
+    Section b = top.section("bulk_viscosity");
+    const bool dynamic = s.time.mass_scaling_dt == 0;
+    s.bulk_viscosity.quadratic = b.number("quadratic", dynamic ? 1.5 : 0.0, {0, 10});
+    s.bulk_viscosity.linear = b.number("linear", dynamic ? 0.06 : 0.0, {0, 1});
+    b.done();
+  }
+  {
     Section o = top.section("output");
     s.output.checkpoint_steps = o.integer("checkpoint_steps", int(s.output.checkpoint_steps), 0, 1000000000);
     s.output.checkpoint_minutes = o.number("checkpoint_minutes", s.output.checkpoint_minutes, {0, 1e6});

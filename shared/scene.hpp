@@ -110,6 +110,15 @@ struct Scene {
     double strain = 0;
   } reference_updates;
 
+  // Bulk viscosity (solver/bulk_viscosity.hpp): in compression the pressure q = rho l |e| (quadratic
+  // l |e| + linear c), e = tr D. Defaults 1.5 and 0.06 (LS-DYNA's), 0 with mass scaling; both 0: off,
+  // at no cost.
+  struct BulkViscosity {
+    double quadratic = 0;
+    double linear = 0;
+    bool on() const { return quadratic > 0 || linear > 0; }
+  } bulk_viscosity;
+
   struct Time {
     double end = 0;                // s
     double cfl = 0.9;              // fraction of the stable step (default 0.5 when the scene has dies)

@@ -28,7 +28,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     f.set_attr("format", kCheckpointFormat);
     f.write("clock/scalars", std::vector<double>{st.t, st.dt_half, c.max_error, st.external_work, c.next_output,
                                                  c.next_history, c.dt_stable, c.kinetic0, c.last_error, c.max_ke_ratio,
-                                                 st.update_work});
+                                                 st.update_work, st.viscous_work});
     f.write("clock/integers", std::vector<std::int64_t>{st.step, c.frames, std::int64_t(dies.size())});
     std::vector<double> die_work;
     for (const auto& d : dies) die_work.insert(die_work.end(), {d.press_work, d.friction_work, d.contact_work});
@@ -40,6 +40,10 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     f.write("points/cp_inv", st.cp_inv, 6);
     f.write("points/ep", st.ep);
     f.write("points/wp", st.wp);
+    if (!st.q.empty()) {  // bulk viscosity: q and det F at the last step
+      f.write("points/q", st.q);
+      f.write("points/J_last", st.J_last);
+    }
     if (st.reference_updates > 0) {  // the reference configuration (reference_update.hpp)
       f.write("particles/u_ref", st.u_ref, 3);
       f.write("points/X", md.point_X, 3);
@@ -52,10 +56,11 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
   bool readable = false;
   try {
     H5File check(tmp, H5File::Mode::read);
-    readable = check.read<double>("clock/scalars").size() == 11 && check.read<std::int64_t>("clock/integers").size() == 3 &&
+    readable = check.read<double>("clock/scalars").size() == 12 && check.read<std::int64_t>("clock/integers").size() == 3 &&
                check.read<double>("dies/work", 3).size() == 3 * dies.size() && check.read<double>("particles/u", 3) == st.u &&
                check.read<double>("particles/v", 3) == st.v && check.read<double>("points/cp_inv", 6) == st.cp_inv &&
                check.read<double>("points/ep") == st.ep && check.read<double>("points/wp") == st.wp &&
+               (st.q.empty() || (check.read<double>("points/q") == st.q && check.read<double>("points/J_last") == st.J_last)) &&
                (st.reference_updates == 0 ||
                 (check.read<double>("particles/u_ref", 3) == st.u_ref && check.read<double>("points/X", 3) == md.point_X &&
                  check.read<double>("points/J_ref") == st.J_ref));
@@ -131,11 +136,11 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
                 std::to_string(kCheckpointFormat) + "); re-run from the start");
   const auto s = f.read<double>("clock/scalars");
   const auto i = f.read<std::int64_t>("clock/integers");
-  if (s.size() != 11 || i.size() != 3 || i[2] != std::int64_t(dies.size()))
+  if (s.size() != 12 || i.size() != 3 || i[2] != std::int64_t(dies.size()))
     throw Error(path + ": the checkpoint's run clock or die count does not match");
   st.t = s[0], st.dt_half = s[1], c.max_error = s[2], st.external_work = s[3];
   c.next_output = s[4], c.next_history = s[5], c.dt_stable = s[6], c.kinetic0 = s[7], c.last_error = s[8],
-  c.max_ke_ratio = s[9], st.update_work = s[10];
+  c.max_ke_ratio = s[9], st.update_work = s[10], st.viscous_work = s[11];
   st.step = i[0], c.frames = i[1];
   const auto work = f.read<double>("dies/work", 3);
   for (std::size_t k = 0; k < dies.size(); ++k)
@@ -144,6 +149,14 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
   st.ep = f.read<double>("points/ep");
   st.wp = f.read<double>("points/wp");
   if (st.ep.size() != md.m) throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
+  if (!st.q.empty()) {  // bulk viscosity on: its state must be there (written by a run with it on)
+    if (!f.exists("points/q"))
+      throw Error(path + ": the checkpoint was written with bulk_viscosity off; restart with the same settings");
+    st.q = f.read<double>("points/q");
+    st.J_last = f.read<double>("points/J_last");
+    if (st.q.size() != md.m || st.J_last.size() != md.m)
+      throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
+  }
   const auto u = f.read<double>("particles/u", 3), v = f.read<double>("particles/v", 3);
   if (updates == 0) {
     st.u = u, st.v = v;

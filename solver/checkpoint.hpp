@@ -18,7 +18,7 @@ namespace rk {
 
 // What the time loop carries besides the State.
 // The layout of the checkpoint files: a reader refuses another.
-inline constexpr std::int64_t kCheckpointFormat = 2;
+inline constexpr std::int64_t kCheckpointFormat = 3;
 
 struct RunClock {
   double next_output = 0, next_history = 0, dt_stable = 0, kinetic0 = 0, last_error = 0, max_ke_ratio = 0;

@@ -6,7 +6,7 @@
 namespace rk {
 
 Energies compute_energies(const Model& md, const State& st, const std::vector<double>& v_old, const Comm& comm) {
-  double e[4] = {0, 0, 0, st.external_work};
+  double e[4] = {0, st.viscous_work, 0, st.external_work};  // the bulk viscosity's work is dissipated
   for (std::size_t I = 0; I < md.n; ++I) {
     if (!md.owned[I]) continue;
     double v2 = 0;

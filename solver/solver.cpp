@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "boundary/essential_bc.hpp"
+#include "bulk_viscosity.hpp"
 #include "checkpoint.hpp"
 #include "contact/die_contact.hpp"
 #include "energy.hpp"
@@ -62,7 +63,7 @@ std::vector<std::string> history_columns(const Scene& scene) {
   std::vector<std::string> c{"time",         "dt",          "kinetic",      "internal",      "plastic_work",
                              "external_work", "contact_work", "energy_error", "friction_work", "contacts",
                              "point_contacts", "max_penetration", "kinetic_internal_ratio", "volume_change", "ebc_error", "update_work",
-                             "spring_energy", "symmetry_depth"};
+                             "spring_energy", "symmetry_depth", "viscous_work"};
   for (const auto& w : scene.rigid_walls) c.push_back(w.name + ".force");
   for (const auto& d : scene.dies)
     for (const char* q : {".stroke", ".force", ".fx", ".fy", ".fz", ".work"}) c.push_back(d.name + q);
@@ -89,6 +90,8 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                                                       " dies but the scene declares " + std::to_string(scene.dies.size()) +
                                                       "; re-run rkprep");
   State st = State::initial(md, scene.initial.velocity.data(), scene.initial.velocity_gradient.data());
+  const BulkViscosityCoefficients bulk{scene.bulk_viscosity.quadratic, scene.bulk_viscosity.linear};
+  init_bulk_viscosity(md, st, bulk);
   compute_deformation_gradient(md, st);
   double dt0 = stable_time_step(md, st, scene.time.cfl).dt;
   comm.min(&dt0, 1);
@@ -147,7 +150,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   std::vector<double> row(columns.size(), 0.0);
   // Global sums for a history row, laid out as: the scalars below, one force per rigid wall, then
   // (contacts, fx, fy, fz, press work) per die, then (fx, fy, fz) per fixed or prescribed face.
-  enum { kContacts, kPointContacts, kSprings, kFriction, kContactWork, kVolume, kEbcWork, kUpdateWork, kScalars };
+  enum { kContacts, kPointContacts, kSprings, kFriction, kContactWork, kVolume, kEbcWork, kUpdateWork, kViscousWork, kScalars };
   std::vector<double> sums(kScalars + scene.rigid_walls.size() + 5 * scene.dies.size() + ebc->reactions().size());
   double max_ebc_error = 0;
   double part_lo[3] = {1e300, 1e300, 1e300}, part_hi[3] = {-1e300, -1e300, -1e300};  // the part's initial box
@@ -207,6 +210,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     }
     compute_deformation_gradient(md, st);
     timer.stop(kDeformation);
+    update_bulk_viscosity(md, st, bulk);
     const StressHealth health = update_stress(md, st);
     plastic_updates += double(health.plastic);
     point_updates += double(md.m);
@@ -300,6 +304,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       std::fill(sums.begin(), sums.end(), 0.0);
       sums[kEbcWork] = ebc->step_work();
       sums[kUpdateWork] = st.update_work;
+      sums[kViscousWork] = st.viscous_work;
       for (std::size_t g = 0; g < md.m; ++g) sums[kVolume] += md.weight[g] * st.total_J(g);
       for (std::size_t w = 0; w < walls; ++w) sums[kScalars + w] = dies->wall_force(w);
       double pen = 0;
@@ -336,7 +341,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       std::size_t c = 0;
       for (double v : {st.t, dt, e.kinetic, e.internal, e.plastic, e.external, e.contact, last_error, sums[kFriction],
                        sums[kContacts], sums[kPointContacts], pen, ratio, sums[kVolume] / volume0 - 1, worst[1], sums[kUpdateWork],
-                       sums[kSprings], worst[2]})
+                       sums[kSprings], worst[2], sums[kViscousWork]})
         row[c++] = v;
       for (std::size_t w = 0; w < walls; ++w) row[c++] = sums[kScalars + w];
       for (std::size_t d = 0; d < dies->size(); ++d) {
@@ -433,9 +438,9 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
 
   // solve.json: totals and per-phase times (min/max over ranks)
   const double wall = comm.wtime() - wall0;
-  double counts[5] = {0, double(md.m), double(md.nbr.size()), plastic_updates, point_updates};
+  double counts[6] = {0, double(md.m), double(md.nbr.size()), plastic_updates, point_updates, st.viscous_work};
   for (std::size_t I = 0; I < md.n; ++I) counts[0] += md.owned[I];
-  comm.sum(counts, 5);
+  comm.sum(counts, 6);
   std::array<double, kPhaseCount> lo = timer.seconds, hi = timer.seconds;
   comm.min(lo.data(), kPhaseCount);
   comm.max(hi.data(), kPhaseCount);
@@ -468,6 +473,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                         {"constraints", ebc->constraints()},
                         {"max_ebc_error_m", max_ebc_error},
                         {"initial_kinetic_energy", kinetic0},
+                        {"viscous_work", counts[5]},
                         {"mass_scaling", md.mass_scaling},
                         {"max_kinetic_internal_ratio", max_ke_ratio},
                         {"reference_updates", st.reference_updates},

@@ -30,6 +30,9 @@ struct State {
   std::vector<double> wp;      // accumulated plastic work density (J/m^3, reference volume)
   std::vector<double> force_bound;  // per point: w |P| max|grad N|, bounds its force contributions
   std::vector<double> cell_J;  // cell-averaged det F (F-bar)
+  // bulk viscosity (bulk_viscosity.hpp), empty when off: q, the stable step's factor, and the det F
+  // (from t = 0; the cell's with F-bar) at the last step
+  std::vector<double> q, dt_factor, J_last;
 
   // reference updates (reference_update.hpp); empty until the first: the particles' displacements
   // at the last update (F is gathered from d - d^ref) and each point's det F up to it
@@ -42,6 +45,7 @@ struct State {
   // contact forces' work is the obstacles' (die_contact.hpp)
   double external_work = 0;
   double update_work = 0;  // kinetic energy changed by reference updates (<= 0: smoothed away)
+  double viscous_work = 0;  // work of the bulk viscosity on this rank's points (dissipated, >= 0)
   std::int64_t contacts = 0;
 
   // v_I = velocity + gradient X_I (gradient row-major: d v_i / d X_j)

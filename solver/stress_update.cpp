@@ -32,8 +32,10 @@ void first_piola(const Model& md, State& st, std::size_t g, int n, double pc) {
   for (int l = 0; l < kLanes; ++l)
     for (int i = 0; i < 9; ++i) F.v[i][l] = l < n ? st.F[9 * (g + l) + i] : (i % 4 == 0);
   for (int l = 0; l < kLanes; ++l) {
-    const double* t = &st.tau[6 * (g + std::min(l, n - 1))];
-    const double shift = md.fbar ? st.total_J(g + std::min(l, n - 1)) * pc - (t[0] + t[1] + t[2]) / 3 : 0.0;
+    const std::size_t p = g + std::min(l, n - 1);
+    const double* t = &st.tau[6 * p];
+    double shift = md.fbar ? st.total_J(p) * pc - (t[0] + t[1] + t[2]) / 3 : 0.0;
+    if (!st.q.empty()) shift -= st.total_J(p) * st.q[p];  // the bulk viscosity's pressure (bulk_viscosity.hpp)
     for (int i = 0; i < 6; ++i) te.v[i][l] = t[i] + (i < 3 ? shift : 0.0);
   }
   const Lane inv_det = 1 / cofactor(F, cof);
