@@ -43,6 +43,17 @@ void set_J(const rk::Model& md, rk::State& st, double J0, double J1) {
 
 const rk::BulkViscosityCoefficients kDefaults{1.5, 0.06};
 
+// The bulk viscosity on, its first (rate-free) update at J = 1, then one step of 10 ns to J0, J1.
+rk::State one_step(const rk::Model& md, double J0, double J1) {
+  rk::State st = state(md);
+  rk::init_bulk_viscosity(md, st, kDefaults);
+  rk::update_bulk_viscosity(md, st, kDefaults);
+  st.dt_half = 1e-8;
+  set_J(md, st, J0, J1);
+  rk::update_bulk_viscosity(md, st, kDefaults);
+  return st;
+}
+
 TEST(BulkViscosity, ClosedFormInCompressionNoneInExpansion) {
   const rk::Model md = cell(false);
   rk::State st = state(md);
@@ -73,12 +84,7 @@ TEST(BulkViscosity, ClosedFormInCompressionNoneInExpansion) {
 
 TEST(BulkViscosity, OneValuePerCellWithFbar) {
   const rk::Model md = cell(true);
-  rk::State st = state(md);
-  rk::init_bulk_viscosity(md, st, kDefaults);
-  rk::update_bulk_viscosity(md, st, kDefaults);
-  st.dt_half = 1e-8;
-  set_J(md, st, 0.996, 1.0);  // the cell's volume falls by 0.1 %
-  rk::update_bulk_viscosity(md, st, kDefaults);
+  const rk::State st = one_step(md, 0.996, 1.0);  // the cell's volume falls by 0.1 %
   EXPECT_GT(st.q[0], 0.0);
   EXPECT_EQ(st.q[0], st.q[1]) << "the cell's J: one q for its points";
   const double Jbar = 0.999;
@@ -87,12 +93,7 @@ TEST(BulkViscosity, OneValuePerCellWithFbar) {
 
 TEST(BulkViscosity, TheStableStepShrinksByItsFactor) {
   const rk::Model md = cell(false);
-  rk::State st = state(md);
-  rk::init_bulk_viscosity(md, st, kDefaults);
-  rk::update_bulk_viscosity(md, st, kDefaults);
-  st.dt_half = 1e-8;
-  set_J(md, st, 0.999, 0.9995);
-  rk::update_bulk_viscosity(md, st, kDefaults);
+  const rk::State st = one_step(md, 0.999, 0.9995);
   EXPECT_LT(st.dt_factor[0], 0.94) << "the linear term alone takes 6 %";
   // the points keep F = I (stretch 1): the step is h0 / c times the smaller factor
   const double dt_plain = md.cell_h0[0] / std::sqrt(md.wave_modulus * st.cell_J[0] / md.density);
