@@ -8,7 +8,11 @@ cells flatten over several steps rather than at the first) by a --set override: 
   the impact (measured), below the ratio;
 - an initial velocity of 20 km/s with health.min_dt_ratio = 0 (the step collapse check off): the
   impact face's cells flatten: the material's volume ratio leaves (0.5, 2) (a pressure no solid
-  metal reaches: measured 0.18 at step 3) before any det F reaches 0, and the run stops there.
+  metal reaches: measured 0.18 at step 3) before any det F reaches 0, and the run stops there;
+- material past a symmetry plane: the same bar at 1000 m/s with the benchmark's wall (the impact face
+  held on it, geometry/taylor_bar/scene.yaml) runs its 10 us but crosses its x and y planes by up to
+  4.5 um (0.0028 spacings, measured near 5.4 us); health.max_symmetry_depth = 0.001 spacings stops
+  it there, naming the particle.
 The same bar without an override runs to the end (exit 0, energy error below the default 5 %), so
 each stop is the override's."""
 import re
@@ -25,10 +29,10 @@ base = ["time.end=10e-6", "time.output_interval=5e-6"]
 number = r"([-+0-9.eE]+)"
 
 
-def run(name, sets):
+def run(name, sets, prepared=prep):
     """Solves the prepared bar in its own folder (a copy of the prep) with the overrides."""
     case = tools.case(name)
-    shutil.copytree(prep, case)
+    shutil.copytree(prepared, case)
     # each run takes 1-2 s; a stop that fails to come would run for ever at a tiny step
     return case, tools.solve(case, 2, sets=base + sets, expect_ok=False, timeout=120)
 
@@ -55,11 +59,16 @@ stops = [
     ("dt", ["health.min_dt_ratio=0.99"],
      rf"the stable time step collapsed to {number} s \({number} of the initial step\) at step (\d+), t = {number} s, "
      r"in the cell of particle \d+ at .* \(last frame written\)"),
+    ("symmetry", ["health.max_symmetry_depth=0.001", "initial_conditions.velocity=[0,0,-1000]"],
+     rf"the material near particle \d+ at .* m is {number} m past a symmetry plane \(health\.max_symmetry_depth = 0\.001 "
+     rf"spacings\) at step (\d+), t = {number} s \(last frame written\)"),
     ("detF", ["health.min_dt_ratio=0", "initial_conditions.velocity=[0,0,-20000]"],
      rf"rank \d: det F = {number} at step (\d+), t = {number} s, near particle \d+ at .* \(last frame written\)"),
 ]
+held = tools.case("health_prep_held_face")
+tools.prep(held, 2, sets=["discretization.spacing=1.6e-3"])
 for name, sets, pattern in stops:
-    case, p = run(f"health_{name}", sets)
+    case, p = run(f"health_{name}", sets, held if name == "symmetry" else prep)
     errors = [ln for ln in (p.stdout + p.stderr).splitlines() if "rksolve: error" in ln]
     m = re.search(pattern, errors[0]) if errors else None
     rkcase.check(p.returncode != 0 and len(errors) == 1 and m is not None,
@@ -67,6 +76,11 @@ for name, sets, pattern in stops:
     step, t = int(m.group(m.lastindex - 1)), float(m.group(m.lastindex))
     if name == "energy":
         rkcase.check(float(m.group(1)) > 1e-4 and t > 1e-6, f"energy error {float(m.group(1)):.2e} > 1e-4 after 10 % of time.end")
+    elif name == "symmetry":
+        depth = float(m.group(1))
+        # the threshold is 0.001 of the smallest spacing (below the nominal 1.6 mm), so 1-10 um
+        rkcase.check(1e-6 < depth < 1.6e-3 * 0.01 and 1e-6 < t < 10e-6,
+                     f"{1e6 * depth:.2f} um past the plane at {1e6 * t:.2f} us, where the run without the bound goes on")
     elif name == "dt":
         rkcase.check(float(m.group(2)) < 0.99, f"step ratio {float(m.group(2)):.4f} < 0.99")
     else:
