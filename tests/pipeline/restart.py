@@ -3,7 +3,8 @@ ends bitwise equal to the uninterrupted run, frames and all; (2) a rank killed w
 stops the whole job quickly, leaves the last good checkpoint, and the restart from it ends bitwise
 equal to the uninterrupted run; (3) a job killed between its ranks' checkpoint writes (one rank a
 checkpoint behind) restarts from the newest step every rank holds, bitwise; a new run drops an
-older run's checkpoints; with no checkpoint, --restart is one clear error."""
+older run's checkpoints; with no checkpoint, --restart is one clear error. The bar runs with bulk viscosity on (its q and the
+last step's det F are in the checkpoint)."""
 import os
 import re
 import shutil
@@ -18,7 +19,7 @@ import rkcase
 
 tools = rkcase.tools_from_argv()
 prep = tools.case("restart_prep")
-tools.prep(prep, 2, sets=["discretization.spacing=1.2e-3"])
+tools.prep(prep, 2, sets=["discretization.spacing=1.2e-3", "bulk_viscosity.quadratic=1.5", "bulk_viscosity.linear=0.06"])
 
 
 def copy(name):
