@@ -1,14 +1,26 @@
-// For the contact tests. How many particles have their material, X_I + u^h(X_I) with u^h evaluated
-// from the RK shape functions directly (not from the model's stored rows), above the plane z = top,
-// and how many have their coefficient X_I + d_I there.
+// For the contact tests: the scene's part on one rank, and how many particles have their material,
+// X_I + u^h(X_I) with u^h evaluated from the RK shape functions directly (not from the model's
+// stored rows), above the plane z = top, and how many have their coefficient X_I + d_I there.
 #pragma once
 #include <cstdint>
 #include <vector>
 
+#include "cad_mesh.hpp"
+#include "discretize.hpp"
 #include "local_shapes.hpp"
 #include "model.hpp"
+#include "partition.hpp"
 #include "scene.hpp"
 #include "state.hpp"
+
+// The scene's part meshed, discretized and built on one rank, as rkprep and rksolve would.
+inline rk::Model one_rank_model(const rk::Scene& scene, const std::vector<rk::DieSurface>& dies) {
+  const rk::VolumeMesh mesh = rk::mesh_cad({scene.geometry.cad, scene.geometry.unit, scene.discretization.spacing});
+  const rk::Discretization disc = rk::discretize(mesh, scene.discretization.gauss_order);
+  const auto cell_rank = rk::partition_cells(mesh, disc, 1, "metis-kway");
+  return rk::build_model(
+      rk::build_subdomains({mesh, disc, cell_rank, 1, scene.discretization.dilation, scene.prep_hash, dies})[0], scene);
+}
 
 struct AboveCount {
   std::int64_t material = 0, coefficients = 0;

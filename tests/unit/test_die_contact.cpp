@@ -25,13 +25,10 @@
 
 #include <cmath>
 
-#include "cad_mesh.hpp"
 #include "contact/die_contact.hpp"
 #include "die_surface.hpp"
-#include "discretize.hpp"
 #include "material_above.hpp"
 #include "model.hpp"
-#include "partition.hpp"
 #include "scene.hpp"
 #include "state.hpp"
 
@@ -42,15 +39,7 @@ const std::string kSource = RK_SOURCE_DIR;
 struct Upsetting {
   rk::Scene scene = rk::load_scene(kSource + "/geometry/upsetting/scene.yaml", {{"discretization.spacing", "2.5e-3"}});
   std::vector<rk::DieSurface> dies{rk::mesh_die(scene.dies[0], scene.discretization.spacing)};
-  rk::Model md = model();
-
-  rk::Model model() const {
-    const rk::VolumeMesh mesh = rk::mesh_cad({scene.geometry.cad, scene.geometry.unit, scene.discretization.spacing});
-    const rk::Discretization disc = rk::discretize(mesh, scene.discretization.gauss_order);
-    const auto cell_rank = rk::partition_cells(mesh, disc, 1, "metis-kway");
-    return rk::build_model(rk::build_subdomains({mesh, disc, cell_rank, 1, scene.discretization.dilation, scene.prep_hash, dies})[0],
-                           scene);
-  }
+  rk::Model md = one_rank_model(scene, dies);
 };
 
 TEST(DieContact, ALiftIntoTheDieMeetsItAtTheParticlesAndThePoints) {

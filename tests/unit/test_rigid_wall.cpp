@@ -10,12 +10,9 @@
 //   normal is their sum, and spread as N_J f it reaches the particles whole (partition of unity).
 #include <gtest/gtest.h>
 
-#include "cad_mesh.hpp"
 #include "contact/die_contact.hpp"
-#include "discretize.hpp"
 #include "material_above.hpp"
 #include "model.hpp"
-#include "partition.hpp"
 #include "scene.hpp"
 #include "state.hpp"
 
@@ -26,20 +23,13 @@ constexpr double kTop = 10e-3;
 
 struct WalledBillet {
   rk::Scene scene = walled();
-  rk::Model md = model();
+  rk::Model md = one_rank_model(scene, {});
 
   static rk::Scene walled() {
     rk::Scene s = rk::load_scene(kSource + "/geometry/upsetting/scene.yaml", {{"discretization.spacing", "2.5e-3"}});
     s.dies.clear();
     s.rigid_walls = {{"top", {0, 0, kTop}, {0, 0, -1}}};
     return s;
-  }
-  rk::Model model() const {
-    const rk::VolumeMesh mesh = rk::mesh_cad({scene.geometry.cad, scene.geometry.unit, scene.discretization.spacing});
-    const rk::Discretization disc = rk::discretize(mesh, scene.discretization.gauss_order);
-    const auto cell_rank = rk::partition_cells(mesh, disc, 1, "metis-kway");
-    return rk::build_model(rk::build_subdomains({mesh, disc, cell_rank, 1, scene.discretization.dilation, scene.prep_hash, {}})[0],
-                           scene);
   }
 };
 
