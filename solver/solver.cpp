@@ -90,8 +90,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                                                       " dies but the scene declares " + std::to_string(scene.dies.size()) +
                                                       "; re-run rkprep");
   State st = State::initial(md, scene.initial.velocity.data(), scene.initial.velocity_gradient.data());
-  const BulkViscosityCoefficients bulk{scene.bulk_viscosity.quadratic, scene.bulk_viscosity.linear};
-  init_bulk_viscosity(md, st, bulk);
+  init_bulk_viscosity(md, st, scene.bulk_viscosity);
   compute_deformation_gradient(md, st);
   double dt0 = stable_time_step(md, st, scene.time.cfl).dt;
   comm.min(&dt0, 1);
@@ -210,7 +209,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     }
     compute_deformation_gradient(md, st);
     timer.stop(kDeformation);
-    update_bulk_viscosity(md, st, bulk);
+    update_bulk_viscosity(md, st, scene.bulk_viscosity);
     const StressHealth health = update_stress(md, st);
     plastic_updates += double(health.plastic);
     point_updates += double(md.m);

@@ -41,7 +41,7 @@ void set_J(const rk::Model& md, rk::State& st, double J0, double J1) {
   st.cell_J[0] = (md.weight[0] * J0 + md.weight[1] * J1) / (md.weight[0] + md.weight[1]);
 }
 
-const rk::BulkViscosityCoefficients kDefaults{1.5, 0.06};
+const rk::Scene::BulkViscosity kDefaults{1.5, 0.06};
 
 // The bulk viscosity on, its first (rate-free) update at J = 1, then one step of 10 ns to J0, J1.
 rk::State one_step(const rk::Model& md, double J0, double J1) {
@@ -103,11 +103,11 @@ TEST(BulkViscosity, TheStableStepShrinksByItsFactor) {
 TEST(BulkViscosity, OffCostsNothing) {
   const rk::Model md = cell(false);
   rk::State st = state(md);
-  rk::init_bulk_viscosity(md, st, {0, 0});
+  rk::init_bulk_viscosity(md, st, rk::Scene::BulkViscosity{0, 0});
   EXPECT_TRUE(st.q.empty() && st.dt_factor.empty() && st.J_last.empty());
   st.dt_half = 1e-8;
   set_J(md, st, 0.9, 0.9);
-  rk::update_bulk_viscosity(md, st, {0, 0});
+  rk::update_bulk_viscosity(md, st, rk::Scene::BulkViscosity{0, 0});
   EXPECT_EQ(st.viscous_work, 0.0);
 }
 
