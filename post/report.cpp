@@ -50,6 +50,9 @@ void write_report(const std::string& case_dir) {
   r << "| energy balance | largest error " << 100 * err << " % of the energy scale (at the end "
     << 100 * solve["energy_error"].get<double>() << " %): "
     << (err <= 0.01 ? "**good** (<= 1 %)" : err <= 0.05 ? "**acceptable** (<= 5 %)" : "**poor** (> 5 %)") << " |\n";
+  if (solve.contains("max_pressure_ratio"))
+    r << "| largest pressure | " << solve["max_pressure_ratio"] << " x (rho0 c_L v_max + sigma_y), rho0 c_L v_max = "
+      << solve.value("impact_pressure_pa", 0.0) / 1e9 << " GPa (the run stops past health.max_pressure_ratio) |\n";
   if (solve.value("mass_scaling", 1.0) > 1)
     r << "| quasi-static | mass scaling " << solve["mass_scaling"] << ", max kinetic/internal "
       << 100 * solve.value("max_kinetic_internal_ratio", 0.0) << " % |\n";

@@ -455,6 +455,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     s.health.max_energy_error = h.number("max_energy_error", s.health.max_energy_error, {0, 1e3, true, false});
     s.health.min_dt_ratio = h.number("min_dt_ratio", s.health.min_dt_ratio, {0, 1});
     s.health.max_symmetry_depth = h.number("max_symmetry_depth", s.health.max_symmetry_depth, {0, 1e3, true, false});
+    s.health.max_pressure_ratio = h.number("max_pressure_ratio", s.health.max_pressure_ratio, {0, 1e6});
     h.done();
   }
   top.done();

@@ -135,6 +135,7 @@ struct Scene {
     double max_energy_error = 0.05;  // fraction of the energy scale; past it the run stops
     double min_dt_ratio = 1e-3;      // stable step / initial step below which the run stops
     double max_symmetry_depth = 0.25;  // material past a symmetry plane, in spacings, that stops the run
+    double max_pressure_ratio = 20;  // |p| / (rho0 c_L v_max + sigma_y) that stops the run (0: no bound)
   } health;
 
   std::string resolved_yaml;     // the deck with every default filled in

@@ -18,6 +18,8 @@ std::string checkpoint_path(const std::string& case_dir, int rank) {
 
 namespace {
 
+constexpr std::size_t kClockScalars = 13;  // the run clock's doubles (write_temporary lists them)
+
 void write_temporary(const std::string& tmp, const Model& md, const State& st, const RunClock& c,
                      const std::vector<DieTotals>& dies) {
   {
@@ -28,7 +30,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     f.set_attr("format", kCheckpointFormat);
     f.write("clock/scalars", std::vector<double>{st.t, st.dt_half, c.max_error, st.external_work, c.next_output,
                                                  c.next_history, c.dt_stable, c.kinetic0, c.last_error, c.max_ke_ratio,
-                                                 st.update_work, st.viscous_work});
+                                                 st.update_work, st.viscous_work, c.max_pressure_ratio});
     f.write("clock/integers", std::vector<std::int64_t>{st.step, c.frames, std::int64_t(dies.size())});
     std::vector<double> die_work;
     for (const auto& d : dies) die_work.insert(die_work.end(), {d.press_work, d.friction_work, d.contact_work});
@@ -56,7 +58,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
   bool readable = false;
   try {
     H5File check(tmp, H5File::Mode::read);
-    readable = check.read<double>("clock/scalars").size() == 12 && check.read<std::int64_t>("clock/integers").size() == 3 &&
+    readable = check.read<double>("clock/scalars").size() == kClockScalars && check.read<std::int64_t>("clock/integers").size() == 3 &&
                check.read<double>("dies/work", 3).size() == 3 * dies.size() && check.read<double>("particles/u", 3) == st.u &&
                check.read<double>("particles/v", 3) == st.v && check.read<double>("points/cp_inv", 6) == st.cp_inv &&
                check.read<double>("points/ep") == st.ep && check.read<double>("points/wp") == st.wp &&
@@ -136,11 +138,12 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
                 std::to_string(kCheckpointFormat) + "); re-run from the start");
   const auto s = f.read<double>("clock/scalars");
   const auto i = f.read<std::int64_t>("clock/integers");
-  if (s.size() != 12 || i.size() != 3 || i[2] != std::int64_t(dies.size()))
+  if (s.size() != kClockScalars || i.size() != 3 || i[2] != std::int64_t(dies.size()))
     throw Error(path + ": the checkpoint's run clock or die count does not match");
   st.t = s[0], st.dt_half = s[1], c.max_error = s[2], st.external_work = s[3];
   c.next_output = s[4], c.next_history = s[5], c.dt_stable = s[6], c.kinetic0 = s[7], c.last_error = s[8],
   c.max_ke_ratio = s[9], st.update_work = s[10], st.viscous_work = s[11];
+  c.max_pressure_ratio = s[12];
   st.step = i[0], c.frames = i[1];
   const auto work = f.read<double>("dies/work", 3);
   for (std::size_t k = 0; k < dies.size(); ++k)

@@ -18,11 +18,12 @@ namespace rk {
 
 // What the time loop carries besides the State.
 // The layout of the checkpoint files: a reader refuses another.
-inline constexpr std::int64_t kCheckpointFormat = 3;
+inline constexpr std::int64_t kCheckpointFormat = 4;
 
 struct RunClock {
   double next_output = 0, next_history = 0, dt_stable = 0, kinetic0 = 0, last_error = 0, max_ke_ratio = 0;
   double max_error = 0;  // the largest energy error of the run so far
+  double max_pressure_ratio = 0;  // the largest |p| / (rho0 c_L v_max + sigma_y) so far (PressureBound)
   std::int64_t frames = 0;
 };
 

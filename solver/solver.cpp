@@ -160,6 +160,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   double h_min = 1e300;  // the smallest particle spacing, the scale of the symmetry planes' health check
   for (std::size_t I = 0; I < md.n; ++I) h_min = std::min(h_min, md.spacing0[I]);
   comm.min(&h_min, 1);
+  const PressureBound pressure_bound{impact_pressure(scene, part_lo, part_hi), scene.health.max_pressure_ratio};
   double volume0 = 0;  // sum of the points' reference volumes (each point lives on one rank)
   for (std::size_t g = 0; g < md.m; ++g) volume0 += md.weight[g];
   comm.sum(&volume0, 1);
@@ -210,7 +211,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     compute_deformation_gradient(md, st);
     timer.stop(kDeformation);
     update_bulk_viscosity(md, st, scene.bulk_viscosity);
-    const StressHealth health = update_stress(md, st);
+    const StressHealth health = update_stress(md, st, pressure_bound);
     plastic_updates += double(health.plastic);
     point_updates += double(md.m);
     timer.stop(kStress);
@@ -224,9 +225,11 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     // rank 0's clock decides whether a wall-clock checkpoint is due (written at the next step's top)
     const bool clock_due = comm.rank() == 0 && scene.output.checkpoint_minutes > 0 &&
                            comm.wtime() - last_checkpoint_wall >= 60 * scene.output.checkpoint_minutes;
-    double red[6] = {-stable.dt, bound, healthy ? 0.0 : 1.0, clock_due ? 1.0 : 0.0,
-                     update_strain > 0 ? largest_strain_since_update(md, st) : 0.0, dies->symmetry_depth() / h_min};
-    comm.max(red, 6);
+    double red[7] = {-stable.dt, bound, healthy ? 0.0 : 1.0, clock_due ? 1.0 : 0.0,
+                     update_strain > 0 ? largest_strain_since_update(md, st) : 0.0, dies->symmetry_depth() / h_min,
+                     health.pressure_ratio};
+    comm.max(red, 7);
+    clock.max_pressure_ratio = std::max(clock.max_pressure_ratio, red[6]);
     checkpoint_due = red[3] > 0;
     update_due = update_strain > 0 && red[4] > update_strain;
     timer.stop(kTimeStep);
@@ -252,7 +255,13 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     }
     if (red[2] > 0) {  // a rank is unhealthy: show the user the state, then stop every rank
       std::ostringstream why;
-      if (!health.ok)
+      if (health.pressure_stop)
+        why << "rank " << comm.rank() << ": the pressure near " << describe_particle(md, st, md.nbr[md.nbr_offsets[health.point]])
+            << " is " << health.pressure << " Pa, " << health.pressure_ratio << " times rho0 c_L v_max + sigma_y = "
+            << std::abs(health.pressure) / health.pressure_ratio << " Pa there (health.max_pressure_ratio = "
+            << scene.health.max_pressure_ratio << ", v_max the fastest start or tool), at step " << st.step << ", t = " << st.t
+            << " s: the state is not physical; refine the spacing or reduce time.cfl";
+      else if (!health.ok)
         why << "rank " << comm.rank() << ": det F = " << health.J << " at step " << st.step << ", t = " << st.t
             << " s, near " << describe_particle(md, st, md.nbr[md.nbr_offsets[health.point]])
             << (health.J > 0 ? " (the material's volume ratio; outside (0.5, 2) no solid metal is, the state is not physical)"
@@ -468,6 +477,8 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                         {"plastic_fraction", counts[3] / std::max(counts[4], 1.0)},
                         {"energy_error", last_error},
                         {"max_energy_error", clock.max_error},
+                        {"max_pressure_ratio", clock.max_pressure_ratio},
+                        {"impact_pressure_pa", pressure_bound.impact},
                         {"ebc_method", scene.discretization.ebc_method},
                         {"constraints", ebc->constraints()},
                         {"max_ebc_error_m", max_ebc_error},

@@ -52,9 +52,18 @@ void first_piola(const Model& md, State& st, std::size_t g, int n, double pc) {
   }
 }
 
+// The pressure p (compression positive) of point g, or of its cell with F-bar, against the bound.
+void check_pressure(const Model& md, const PressureBound& b, double p, double ep, std::size_t g, StressHealth& h) {
+  const double ref = b.impact + (md.material.plastic ? md.material.yield(ep) : 0.0);
+  if (!(ref > 0)) return;  // an elastic part at rest and untouched: nothing to scale a bound with
+  const double r = std::abs(p) / ref;
+  if (r > h.pressure_ratio) h.pressure_ratio = r, h.pressure_point = g, h.pressure = p;
+  if (b.ratio > 0 && !(r <= b.ratio) && h.ok) h.ok = false, h.point = g, h.pressure_stop = true;
+}
+
 }  // namespace
 
-StressHealth update_stress(const Model& md, State& st) {
+StressHealth update_stress(const Model& md, State& st, const PressureBound& bound) {
   StressHealth health;
   J2Batch b;
   // F-bar couples the points of a cell; without it (volumetric: none, nodal integration) the points
@@ -70,7 +79,7 @@ StressHealth update_stress(const Model& md, State& st) {
         cell_ok = false;
       }
     if (!cell_ok) continue;
-    double wp = 0, wJ = 0, w = 0;
+    double wp = 0, wJ = 0, w = 0, ep_max = 0;
     for (auto g = g0; g < g1; g += kLanes) {
       const int n = int(std::min<std::size_t>(kLanes, g1 - g));
       load(md, st, c, g, n, b);
@@ -91,14 +100,47 @@ StressHealth update_stress(const Model& md, State& st) {
         // past that the state is not physical (a pressure of 0.69 K, 90 GPa in copper).
         const double J = md.fbar ? 0.0 : st.total_J(p);
         if (!md.fbar && !(J > kMinVolumeRatio && J < 1 / kMinVolumeRatio) && health.ok) health = {false, p, J};
+        if (!md.fbar)
+          check_pressure(md, bound, (st.q.empty() ? 0.0 : st.q[p]) - (t[0] + t[1] + t[2]) / (3 * J), st.ep[p], p, health);
+        ep_max = std::max(ep_max, st.ep[p]);
       }
     }
     if (md.fbar && !(wJ > kMinVolumeRatio * w && wJ < w / kMinVolumeRatio) && health.ok) health = {false, g0, wJ / w};
+    if (md.fbar && health.ok) check_pressure(md, bound, (st.q.empty() ? 0.0 : st.q[g0]) - wp / wJ, ep_max, g0, health);
     if (!health.ok) continue;
     const double pc = md.fbar ? wp / wJ : 0.0;
     for (auto g = g0; g < g1; g += kLanes) first_piola(md, st, g, int(std::min<std::size_t>(kLanes, g1 - g)), pc);
   }
   return health;
+}
+
+}  // namespace rk
+
+namespace rk {
+
+double impact_pressure(const Scene& scene, const double lo[3], const double hi[3]) {
+  double v2 = 0;
+  for (int corner = 0; corner < 8; ++corner) {  // v0 + G X is linear: its largest speed is at a corner
+    const double X[3] = {corner & 1 ? hi[0] : lo[0], corner & 2 ? hi[1] : lo[1], corner & 4 ? hi[2] : lo[2]};
+    double s2 = 0;
+    for (int i = 0; i < 3; ++i) {
+      double v = scene.initial.velocity[i];
+      for (int j = 0; j < 3; ++j) v += scene.initial.velocity_gradient[3 * i + j] * X[j];
+      s2 += v * v;
+    }
+    v2 = std::max(v2, s2);
+  }
+  double v = std::sqrt(v2);
+  auto fastest = [&](const DieMotion& m) {
+    v = std::max(v, std::abs(m.speed));
+    for (std::size_t k = 1; k < m.curve.size(); ++k) v = std::max(v, std::abs(m.rate(m.curve[k - 1].first)));
+  };
+  for (const auto& d : scene.dies) fastest(d.motion);
+  for (const auto& f : scene.prescribed_faces) fastest(f.motion);
+  const Material& mat = scene.material;
+  const double nu = mat.poisson_ratio;
+  const double wave_modulus = mat.youngs_modulus * (1 - nu) / ((1 + nu) * (1 - 2 * nu));  // K + 4G/3
+  return std::sqrt(mat.density * wave_modulus) * v;
 }
 
 }  // namespace rk

@@ -12,7 +12,10 @@ cells flatten over several steps rather than at the first) by a --set override: 
 - material past a symmetry plane: the same bar at 1000 m/s with the benchmark's wall (the impact face
   held on it, geometry/taylor_bar/scene.yaml) runs its 10 us but crosses its x and y planes by up to
   4.5 um (0.0028 spacings, measured near 5.4 us); health.max_symmetry_depth = 0.001 spacings stops
-  it there, naming the particle.
+  it there, naming the particle;
+- a pressure past the bound: the held-face bar at its 227 m/s peaks at 0.82 of rho0 c_L v + sigma_y
+  (measured; the acoustic pressure of the impact, 9.30 GPa, plus the yield stress) at its first
+  steps; health.max_pressure_ratio = 0.5 stops it at the first step past half of that (step 3).
 The same bar without an override runs to the end (exit 0, energy error below the default 5 %), so
 each stop is the override's."""
 import re
@@ -62,13 +65,17 @@ stops = [
     ("symmetry", ["health.max_symmetry_depth=0.001", "initial_conditions.velocity=[0,0,-1000]"],
      rf"the material near particle \d+ at .* m is {number} m past a symmetry plane \(health\.max_symmetry_depth = 0\.001 "
      rf"spacings\) at step (\d+), t = {number} s \(last frame written\)"),
+    ("pressure", ["health.max_pressure_ratio=0.5"],
+     rf"rank \d: the pressure near particle \d+ at .* m is {number} Pa, {number} times rho0 c_L v_max \+ sigma_y = {number} Pa "
+     rf"there \(health\.max_pressure_ratio = 0\.5, v_max the fastest start or tool\), at step (\d+), t = {number} s: "
+     r"the state is not physical"),
     ("detF", ["health.min_dt_ratio=0", "initial_conditions.velocity=[0,0,-20000]"],
      rf"rank \d: det F = {number} at step (\d+), t = {number} s, near particle \d+ at .* \(last frame written\)"),
 ]
 held = tools.case("health_prep_held_face")
 tools.prep(held, 2, sets=["discretization.spacing=1.6e-3"])
 for name, sets, pattern in stops:
-    case, p = run(f"health_{name}", sets, held if name == "symmetry" else prep)
+    case, p = run(f"health_{name}", sets, held if name in ("symmetry", "pressure") else prep)
     errors = [ln for ln in (p.stdout + p.stderr).splitlines() if "rksolve: error" in ln]
     m = re.search(pattern, errors[0]) if errors else None
     rkcase.check(p.returncode != 0 and len(errors) == 1 and m is not None,
@@ -81,6 +88,13 @@ for name, sets, pattern in stops:
         # the threshold is 0.001 of the smallest spacing (below the nominal 1.6 mm), so 1-10 um
         rkcase.check(1e-6 < depth < 1.6e-3 * 0.01 and 1e-6 < t < 10e-6,
                      f"{1e6 * depth:.2f} um past the plane at {1e6 * t:.2f} us, where the run without the bound goes on")
+    elif name == "pressure":
+        # copper, rho0 c_L v = sqrt(8930 kg/m^3 x 187.8 GPa) x 227 m/s = 9.30 GPa, plus sigma_y (0.40 GPa
+        # at ep = 0, more where the material hardened); the stop is the first step past 0.5 of it,
+        # and one step raises the ratio by less than 0.1 here (0.52 measured)
+        pressure, ratio, ref = (float(m.group(k)) for k in (1, 2, 3))
+        rkcase.check(9.30e9 < ref < 9.30e9 + 0.6e9 and 0.5 < ratio < 0.6 and abs(pressure / ref - ratio) < 1e-5 * ratio,
+                     f"pressure {pressure / 1e9:.3f} GPa = {ratio:.3f} x {ref / 1e9:.3f} GPa at step {step}")
     elif name == "dt":
         rkcase.check(float(m.group(2)) < 0.99, f"step ratio {float(m.group(2)):.4f} < 0.99")
     else:
