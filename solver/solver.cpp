@@ -160,7 +160,9 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   double h_min = 1e300;  // the smallest particle spacing, the scale of the symmetry planes' health check
   for (std::size_t I = 0; I < md.n; ++I) h_min = std::min(h_min, md.spacing0[I]);
   comm.min(&h_min, 1);
-  const PressureBound pressure_bound{impact_pressure(scene, part_lo, part_hi), scene.health.max_pressure_ratio};
+  // (mass scaling raises the impedance, and with it the pressure of a tool's start, by sqrt(factor))
+  const PressureBound pressure_bound{impact_pressure(scene, part_lo, part_hi) * std::sqrt(md.mass_scaling),
+                                     scene.health.max_pressure_ratio};
   double volume0 = 0;  // sum of the points' reference volumes (each point lives on one rank)
   for (std::size_t g = 0; g < md.m; ++g) volume0 += md.weight[g];
   comm.sum(&volume0, 1);

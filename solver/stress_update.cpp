@@ -57,7 +57,7 @@ void check_pressure(const Model& md, const PressureBound& b, double p, double ep
   const double ref = b.impact + (md.material.plastic ? md.material.yield(ep) : 0.0);
   if (!(ref > 0)) return;  // an elastic part at rest and untouched: nothing to scale a bound with
   const double r = std::abs(p) / ref;
-  if (r > h.pressure_ratio) h.pressure_ratio = r, h.pressure_point = g, h.pressure = p;
+  if (r > h.pressure_ratio) h.pressure_ratio = r, h.pressure = p;
   if (b.ratio > 0 && !(r <= b.ratio) && h.ok) h.ok = false, h.point = g, h.pressure_stop = true;
 }
 

@@ -19,7 +19,7 @@ inline constexpr double kMinVolumeRatio = 0.5;
 // The pressure's health bound. No metal under an impact at speed v or a tool pressing it carries a
 // pressure many times p_ref = rho0 c_L v + sigma_y(ep): the acoustic (shock) pressure of the impact
 // plus the flow stress a tool's constraint multiplies. `impact` is rho0 c_L v of the run's fastest
-// start or tool (unscaled density: mass scaling does not raise real pressures); `ratio` the
+// start or tool (with mass scaling's density: it raises a start's pressure as well); `ratio` the
 // multiple of p_ref past which the state is not physical (health.max_pressure_ratio; 0: no bound).
 struct PressureBound {
   double impact = 0;  // Pa
@@ -32,7 +32,6 @@ struct StressHealth {
   double J = 1;
   std::size_t plastic = 0;  // points that returned to the yield surface (for the bench's flop count)
   double pressure_ratio = 0;  // the largest |p| / p_ref (PressureBound) of the rank's points
-  std::size_t pressure_point = 0;  // where it is
   double pressure = 0;  // its pressure (Pa, compression positive, the bulk viscosity's q included)
   bool pressure_stop = false;  // not ok because a pressure passed the bound (point, pressure say where)
 };
