@@ -30,6 +30,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(ROOT / "scripts"))
+import beam_check  # noqa: E402
+import case_check  # noqa: E402
 import taylor_metrics  # noqa: E402
 import upsetting_check  # noqa: E402
 
@@ -45,6 +47,7 @@ UPSET = "upsetting/scene.yaml"
 UPSET_FRICTION = "upsetting/scene_friction.yaml"
 THIN_WALL = "thin_wall/scene.yaml"
 BEAM = "beam/scene.yaml"
+BAR_WALLS = "elastic_bar/scene_walls.yaml"
 # converged finite-element values at 80 us (BENCHMARKS.md case 1): the reference for the errors
 TAYLOR_REF = {"footprint_radius_mm": 7.22, "final_length_mm": 21.45}
 SEED_SPEEDUP = {2: 1.81, 4: 3.21, 8: 6.41, 16: 10.39, 32: 24.14}  # seed, Taylor bar (BENCHMARKS.md 6)
@@ -134,6 +137,11 @@ def stability():
         ("nodal cfl 1.5", ["discretization.integration=nodal"], ["time.cfl=1.5"]),
         ("nodal jitter 0.4", ["discretization.integration=nodal", "discretization.jitter=0.4"], []),
         ("nodal 500 m/s", ["discretization.integration=nodal"], ["initial_conditions.velocity=[0,0,-500]"]),
+        # reference updates (every 0.2 of Green strain) at the same extremes
+        *[(f"updates {k}", p, ["reference_updates.strain=0.2", *v]) for k, p, v in (
+            ("cfl 2.0", [], ["time.cfl=2.0"]), ("jitter 0.4", ["discretization.jitter=0.4"], []),
+            ("nu 0.499", [], ["material.poisson_ratio=0.499"]),
+            *[(f"{v} m/s", [], [f"initial_conditions.velocity=[0,0,-{v}]"]) for v in (500, 1000)])],
         (f"elastic {DRIFT_END:g} s", [], ["initial_conditions.velocity=[1,0,0]", f"time.end={DRIFT_END}",
                                    "time.output_interval=1e-2", "output.checkpoint_steps=0"])]
     cases = [Case("taylor_" + k.replace(" ", "_").replace("/", ""),
@@ -147,6 +155,11 @@ def stability():
         for cfl in (0.9, 0.8, 0.65, 0.5):
             cases.append(Case(f"beam_cfl_{cfl}", scene=BEAM, solve=[f"time.cfl={cfl}", "output.checkpoint_steps=0"],
                               label=f"beam, 40 ms, cfl {cfl}"))
+        # contact over a long run: the elastic bar bouncing between two walls, with and without bulk
+        # viscosity (1.5 mm spacing: 2 ms, about 50 contacts, 2.6 x 10^4 steps)
+        for name, sets in (("", []), ("_no_viscosity", ["bulk_viscosity.quadratic=0", "bulk_viscosity.linear=0"])):
+            cases.append(Case(f"bar_between_walls{name}", scene=BAR_WALLS, prep=["discretization.spacing=1.5e-3"],
+                              solve=sets, label="bar between walls, 2 ms" + name.replace("_", " ")))
     return cases
 
 
@@ -317,6 +330,10 @@ def measure(c, out, result):
             result["error"] = sum(abs(m[k] / v - 1) for k, v in TAYLOR_REF.items())
             if c.scene == TAYLOR:  # every frame against the converged history
                 result.update(taylor_metrics.history_errors(out))
+        elif c.scene == BEAM:  # long elastic runs: the frequency and the energy's drift
+            result.update(beam_check.check(out))
+        elif c.scene == BAR_WALLS:
+            result.update(case_check.energy_drift(out))
         elif c.scene == THIN_WALL:  # no reference: whether it holds together, its height, its strain
             m = taylor_metrics.metrics(out)
             result.update({k: m[k] for k in ("finite", "final_length_mm", "max_eq_plastic_strain")})
@@ -348,6 +365,9 @@ def report(study):
     if study == "convergence":  # every frame against the converged history; the rim's radius at fixed heights
         keys[-1:-1] = ["footprint_radius_history_error", "final_length_history_error", "radius_0.1mm_mm",
                        "radius_0.2mm_mm", "max_radius_mm"]
+    if study == "stability":  # the long runs: their largest energy error, the mechanical energy's drift, f1
+        keys[-1:-1] = ["max_energy_error", "energy_end_over_start", "f1_error"]
+    if study == "convergence":
         for r in rows:  # cases measured before the history was compared
             case = WORK / study / r["case"]
             if r["case"].startswith("taylor") and "final_length_history_error" not in r and (case / "vtk" / "case.pvd").exists():
