@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "cad_mesh.hpp"
+#include "case_layout.hpp"
 #include "cli.hpp"
 #include "die_surface.hpp"
 #include "discretize.hpp"
@@ -63,11 +64,23 @@ int run(int argc, char** argv) {
   bool quiet = false;
   std::vector<std::string> sets;
   app.add_option("scene", scene_file, "scene YAML file")->required();
-  app.add_option("--ranks", ranks, "number of MPI ranks (one subdomain file each)")->check(CLI::PositiveNumber);
+  app.add_option("--ranks", ranks, "number of MPI ranks (one subdomain file each)")
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            try {
+              std::size_t used = 0;
+              if (std::stoi(v, &used) >= 1 && used == v.size()) return std::string();
+            } catch (const std::exception&) {
+            }
+            return v + " is not a number of ranks (a whole number, at least 1)";
+          },
+          "RANKS >= 1"));
   app.add_option("--out", out, "case directory to write")->required();
   app.add_option("--set", sets, "override a scene key: key.path=value (repeatable)");
   app.add_option("--partitioner", partitioner, "metis-kway | metis-recursive");
   app.add_flag("--quiet", quiet, "print nothing but errors");
+  bool force = false;
+  app.add_flag("--force", force, "replace the files of a case already in --out (its results, history, checkpoints)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -77,6 +90,13 @@ int run(int argc, char** argv) {
   PhaseTimer timer(quiet);
   auto t0 = std::chrono::steady_clock::now();
   const rk::Scene scene = rk::load_scene(scene_file, rk::parse_overrides(sets), rk::Side::prep);
+  // a new case never lies beside another's results: refused, or with --force those files go first
+  if (const std::string old = rk::case_entries_in(out); !old.empty()) {
+    if (!force)
+      throw rk::Error(out + ": holds a case already (" + old +
+                      "); choose another --out, or pass --force to replace that case's files");
+    for (const char* e : rk::kCaseEntries) fs::remove_all(fs::path(out) / e);
+  }
   rk::VolumeMesh mesh = timer.run("mesh", [&] {
     return rk::mesh_cad({scene.geometry.cad, scene.geometry.unit, scene.discretization.spacing});
   });

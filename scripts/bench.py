@@ -42,7 +42,7 @@ def run(args, capture=False):
 def prep(a, case, ranks, spacing=None, sets=()):
     extra = ["--set", f"discretization.spacing={spacing}"] if spacing else []
     extra += [x for s in sets for x in ("--set", s)]
-    run([a.bin / "rkprep", SCENE, "--ranks", ranks, "--out", case, "--quiet", *extra])  # always: a case left
+    run([a.bin / "rkprep", SCENE, "--ranks", ranks, "--out", case, "--quiet", "--force", *extra])  # always: a case left
     return json.loads((case / "prep.json").read_text())                                # by an older build may not read
 
 

@@ -7,7 +7,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 
 echo "== rkprep: geometry/taylor_bar/scene.yaml -> $case_dir ($ranks ranks)"
-"$build/bin/rkprep" "$root/geometry/taylor_bar/scene.yaml" --ranks "$ranks" --out "$case_dir" \
+"$build/bin/rkprep" "$root/geometry/taylor_bar/scene.yaml" --ranks "$ranks" --out "$case_dir" --force \
   --set time.output_interval=2e-6
 echo "== rksolve on $ranks ranks"
 mpirun -np "$ranks" "$build/bin/rksolve" "$case_dir"

@@ -19,6 +19,20 @@ p = tools.solve(case, 1, sets=["discretization.dilation=3"], expect_ok=False)
 rkcase.check(p.returncode != 0 and "re-run rkprep" in p.stderr, "rksolve refuses a prep-side --set")
 p = tools.solve(case, 1, sets=["time.cfl=abc"], expect_ok=False)
 rkcase.check(p.returncode != 0 and "'time.cfl' must be a number" in p.stderr, "rksolve: bad --set value")
+p = tools.run([tools.bin / "rkprep", rkcase.TAYLOR, "--ranks", "0", "--out", tools.work / "x"], expect_ok=False)
+rkcase.check(p.returncode != 0 and "--ranks: 0 is not a number of ranks (a whole number, at least 1)" in p.stderr
+             and len(p.stderr) < 200, f"rkprep --ranks 0: {p.stderr.strip()}")
+
+# a new prep never lies beside another case's results: refused without --force, replaced with it
+tools.solve(case, 1, sets=["time.end=1e-6"])
+again = [tools.bin / "rkprep", rkcase.TAYLOR, "--ranks", 1, "--out", case, "--quiet", "--set", "discretization.spacing=1.5e-3"]
+p = tools.run(again, expect_ok=False)
+rkcase.check(p.returncode != 0 and "holds a case already (sub, prep.json, scene.resolved.yaml, results, checkpoint, "
+             "history.csv, solve.json)" in p.stderr and "--force" in p.stderr and (case / "solve.json").exists(),
+             f"rkprep into a solved case is refused, nothing touched: {p.stderr.strip()}")
+tools.run(again + ["--force"])
+left = sorted(e.name for e in case.iterdir())
+rkcase.check(left == ["prep.json", "scene.resolved.yaml", "sub"], f"rkprep --force: only the new prep is left ({left})")
 
 # the bench's machine probe: one JSON object of positive rates, and a clear error on bad use
 p = tools.run([tools.bin / "rkmachine", "--seconds", "0.02"])
