@@ -42,7 +42,13 @@ std::string frame_file(const std::string& case_dir, int rank, int frame) {
   return case_dir + name;
 }
 
-Frame read_frame(const std::string& case_dir, int ranks, int f, const std::vector<Field>& fields) {
+// A frame of another case (another scene's subdomains): never merged, never skipped quietly.
+struct ForeignFrame : rk::Error {
+  using rk::Error::Error;
+};
+
+Frame read_frame(const std::string& case_dir, int ranks, int f, const std::vector<Field>& fields,
+                 const std::string& scene_hash) {
   Frame fr;
   fr.values.resize(fields.size());
   char group[32];
@@ -52,6 +58,10 @@ Frame read_frame(const std::string& case_dir, int ranks, int f, const std::vecto
     const std::string path = frame_file(case_dir, r, f);
     if (!fs::exists(path)) throw rk::Error(path + ": missing (the rank did not write this frame)");
     const rk::H5File h(path, rk::H5File::Mode::read);
+    const std::string hash = h.has_attr("scene_hash") ? h.attr_string("scene_hash") : "none";
+    if (hash != scene_hash)
+      throw ForeignFrame(path + ": computed on another scene's subdomains (scene hash " + hash + ", this case's " +
+                         scene_hash + "): a result of an earlier case; re-run rksolve on this case");
     fr.time = h.read<double>(g + "time")[0];
     auto gid = h.read<std::int64_t>(g + "global_id");
     fr.rank.insert(fr.rank.end(), gid.size(), std::int64_t(r));
@@ -188,8 +198,10 @@ int run(int argc, char** argv) {
   for (int f : chosen) {
     Frame fr;
     try {  // a frame missing on a rank or half written is reported and skipped; the rest is merged
-      fr = read_frame(case_dir, ranks, f, fields);
+      fr = read_frame(case_dir, ranks, f, fields, scene.prep_hash);
       sort_by_global_id(fr, fields, case_dir + " frame " + std::to_string(f));
+    } catch (const ForeignFrame&) {
+      throw;
     } catch (const rk::Error& e) {
       std::fprintf(stderr, "rkpost: frame %d skipped: %s\n", f, e.what());
       ++skipped;
@@ -216,6 +228,9 @@ int run(int argc, char** argv) {
   }
   rk::write_pvd(case_dir + "/vtk/case.pvd", index);
   rk::write_report(case_dir);
+  if (!fs::exists(case_dir + "/solve.json"))  // a run a health check stopped: its frames are there to look at
+    std::fprintf(stderr, "rkpost: warning: %s has no solve.json: the run did not finish (report.md says so)\n",
+                 case_dir.c_str());
   if (!quiet)
     std::printf("rkpost: %lld frames of %d ranks merged into %s/vtk/case.pvd (%d skipped, %zu dies)\n",
                 static_cast<long long>(chosen.size() - skipped), ranks, case_dir.c_str(), skipped, dies.size());

@@ -36,8 +36,9 @@ static std::string frame_path(const std::string& dir, std::int64_t frame) {
   return dir + name;
 }
 
-ResultWriter::ResultWriter(const std::string& case_dir, const Model& md, std::int64_t resume_frames)
-    : exchange_(md, kProjected), partial_(kProjected * md.n) {
+ResultWriter::ResultWriter(const std::string& case_dir, const Model& md, const std::string& scene_hash,
+                           std::int64_t resume_frames)
+    : scene_hash_(scene_hash), exchange_(md, kProjected), partial_(kProjected * md.n) {
   char name[32];
   std::snprintf(name, sizeof name, "/results/rank_%04d", md.rank);
   dir_ = case_dir + name;
@@ -106,6 +107,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     H5File f(tmp, H5File::Mode::create);
     f.set_attr("rank", std::int64_t(md.rank));
     f.set_attr("ranks", std::int64_t(md.ranks));
+    f.set_attr("scene_hash", scene_hash_);
     char group[32];
     std::snprintf(group, sizeof group, "frames/%05d/", frames_);
     const std::string g(group);

@@ -19,14 +19,15 @@ class ResultWriter {
  public:
   // One file per frame, CASE/results/rank_NNNN/frame_FFFFF.h5, each written whole or not at all
   // (durable_file). resume_frames < 0: a new run (old frames are removed); otherwise keep the first
-  // resume_frames frames (a restart drops the frames written after its checkpoint).
-  ResultWriter(const std::string& case_dir, const Model& md, std::int64_t resume_frames = -1);
+  // resume_frames frames (a restart drops the frames written after its checkpoint). Each frame carries
+  // the scene hash of the subdomains it was computed on (rkpost merges only its own case's frames).
+  ResultWriter(const std::string& case_dir, const Model& md, const std::string& scene_hash, std::int64_t resume_frames = -1);
   // Collective (the particle values of point quantities need the overlap exchange).
   void write_frame(const Model& md, const State& st, const std::vector<double>& velocity, const Comm& comm);
   int frames() const { return frames_; }
 
  private:
-  std::string dir_;
+  std::string dir_, scene_hash_;
   int frames_ = 0;
   OverlapExchange exchange_;
   std::vector<Fixed> partial_;

@@ -113,7 +113,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     collectively(comm, [&] { return remove_checkpoints(opt.case_dir, comm.rank()), 0; });
   }
   auto results = collectively(comm, [&] {
-    return std::make_unique<ResultWriter>(opt.case_dir, md, opt.restart ? clock.frames : -1);
+    return std::make_unique<ResultWriter>(opt.case_dir, md, scene.prep_hash, opt.restart ? clock.frames : -1);
   });
   std::unique_ptr<HistoryWriter> history;
   const std::vector<std::string> columns = history_columns(scene);
@@ -137,7 +137,7 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     dies->totals() = totals;
     exchange.emplace(md, 3);
     headroom = force_headroom(md, 1 + die_count, die_count, comm);
-    results = collectively(comm, [&] { return std::make_unique<ResultWriter>(opt.case_dir, md, results->frames()); });
+    results = collectively(comm, [&] { return std::make_unique<ResultWriter>(opt.case_dir, md, scene.prep_hash, results->frames()); });
     v_old.assign(st.v.size(), 0.0);
   };
   if (st.reference_updates > 0) {  // a restart after updates: back onto the checkpoint's reference

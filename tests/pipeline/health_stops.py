@@ -101,6 +101,12 @@ for name, sets, pattern in stops:
         J = float(m.group(1))
         rkcase.check(0 < J < 0.5 and "the state is not physical" in p.stderr,
                      f"det F = {J:.2e}: the volume ratio below 0.5 stops the run before det F reaches 0")
+    if name == "energy":  # the stopped run can be looked at: rkpost merges its frames and says it did not finish
+        post = tools.post(case, expect_ok=False)
+        report = (case / "report.md").read_text()
+        rkcase.check(post.returncode == 0 and (case / "vtk" / "case.pvd").exists() and "**not finished**" in report
+                     and "did not finish" in post.stderr, f"rkpost on the stopped run: exit {post.returncode}, "
+                     f"report.md says it did not finish; {post.stderr.strip()}")
     frames = newest_frames(case)  # the message prints t to 6 significant digits
     rkcase.check(len(frames) == 2 and all(s == step and abs(ft - t) <= 1e-5 * t for s, ft in frames),
                  f"{name}: the last frame of each rank is at the stop, step {step}, t = {t:.6g} s: {frames}")

@@ -2,6 +2,7 @@
 reported, naming the file and the dataset, and skipped; a frame file missing on a rank is reported
 and skipped; every other frame is still merged and rkpost exits 0. rksolve writes each frame whole
 (temporary name, fsync, rename), so a killed run leaves no half-written frame file behind."""
+import shutil
 import subprocess
 import xml.etree.ElementTree as ET
 
@@ -31,3 +32,15 @@ rkcase.check("frame 3 skipped" in p.stderr and "rank_0000/frame_00003.h5: missin
 merged = [d.get("file") for d in ET.parse(case / "vtk" / "case.pvd").getroot().iter("DataSet")]
 rkcase.check(merged == ["frame_00000.vtu", "frame_00001.vtu", "frame_00004.vtu"],
              f"the other 3 of 5 frames are merged: {merged}")
+
+# Another case's results beside new subdomains (copied in by hand: rkprep itself refuses such a
+# folder): rkpost merges none of them and says why, with a non-zero exit.
+other = tools.case("rkpost_foreign_frames")
+tools.prep(other, 2, sets=["discretization.spacing=1.5e-3"])
+shutil.copytree(case / "results", other / "results")
+(other / "results" / "rank_0000" / "frame_00003.h5").unlink(missing_ok=True)
+p = tools.post(other, expect_ok=False)
+errors = [ln for ln in p.stderr.splitlines() if "rkpost: error" in ln]
+rkcase.check(p.returncode != 0 and len(errors) == 1 and "computed on another scene's subdomains" in errors[0]
+             and "re-run rksolve" in errors[0] and not (other / "vtk" / "case.pvd").exists(),
+             f"another case's frames are refused: {errors[0] if errors else p.stderr.strip()}")
