@@ -62,6 +62,8 @@ void write_report(const std::string& case_dir) {
   r << "| particles / cells / integration points | " << prep["particles"] << " / " << prep["cells"] << " / "
     << prep["integration_points"] << " |\n";
   r << "| ranks | " << prep["ranks"] << " (imbalance " << num(prep["partition"]["imbalance"], 3) << ") |\n";
+  if (solve.contains("warnings"))
+    for (const auto& w : solve["warnings"]) r << "| **warning** | " << w.get<std::string>() << " |\n";
   if (solve.empty()) {
     r << "| run | **not finished**: no solve.json (rksolve stopped with an error, its message says why, or is "
          "still running); history.csv ends at t = "

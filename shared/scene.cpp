@@ -184,17 +184,46 @@ double unit_length(const std::string& unit) {
   return units.at(unit);
 }
 
+// --set key.path=value; a list entry is named by its index: dies[0].friction=0.2.
 void apply_override(YAML::Node root, const Override& o, const std::string& file) {
   std::vector<std::string> keys;
   std::stringstream ss(o.path);
   for (std::string k; std::getline(ss, k, '.');) keys.push_back(k);
   YAML::Node node = root;
-  for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
-    YAML::Node next = node[keys[i]];
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    std::string key = keys[i];
+    long index = -1;  // key[index]: an entry of the list `key`
+    if (const auto open = key.find('['); open != std::string::npos) {
+      char* end = nullptr;
+      index = std::strtol(key.c_str() + open + 1, &end, 10);
+      if (open == 0 || index < 0 || end == key.c_str() + open + 1 || std::string(end) != "]")
+        throw Error(file + ": --set " + o.path + ": '" + key + "' is not a key or a list entry like dies[0]");
+      key = key.substr(0, open);
+    }
+    const bool leaf = i + 1 == keys.size();
+    if (index >= 0) {
+      const YAML::Node list = node[key];
+      if (!list || !list.IsSequence() || std::size_t(index) >= list.size())
+        throw Error(file + ": --set " + o.path + ": the scene's '" + key + "' has " +
+                    std::to_string(list && list.IsSequence() ? list.size() : 0) + " entries (from " + key + "[0])");
+      if (leaf) {
+        try {
+          node[key][std::size_t(index)] = YAML::Load(o.value);
+        } catch (const YAML::Exception&) {
+          throw Error(file + ": --set " + o.path + "=" + o.value + ": not a valid value");
+        }
+        return;
+      }
+      node.reset(node[key][std::size_t(index)]);
+      if (!node.IsMap()) throw Error(file + ": --set " + o.path + ": '" + keys[i] + "' is not a section");
+      continue;
+    }
+    if (leaf) break;
+    YAML::Node next = node[key];
     if (next && !next.IsNull() && !next.IsMap())
-      throw Error(file + ": --set " + o.path + ": '" + keys[i] + "' is not a section");
-    if (!next || next.IsNull()) node[keys[i]] = YAML::Node(YAML::NodeType::Map);
-    node.reset(node[keys[i]]);
+      throw Error(file + ": --set " + o.path + ": '" + key + "' is not a section");
+    if (!next || next.IsNull()) node[key] = YAML::Node(YAML::NodeType::Map);
+    node.reset(node[key]);
   }
   try {
     node[keys.back()] = YAML::Load(o.value);
@@ -279,8 +308,14 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
   }
   if (!root.IsMap()) throw Error(name + ": the scene must be a YAML map of sections");
   for (const auto& o : overrides) {
-    const bool prep_key = o.path.rfind("geometry.", 0) == 0 || o.path.rfind("discretization.", 0) == 0 ||
-                          o.path.rfind("dies", 0) == 0;
+    // rkprep's keys: the part, its discretization, and which dies there are and their CAD (prep_hash);
+    // a die's friction, motion and force factor are the solver's
+    const std::string& k = o.path;
+    const bool die_key = k.rfind("dies", 0) == 0;
+    const bool die_solver_key = die_key && (k.find("].friction") != std::string::npos ||
+                                            k.find("].motion") != std::string::npos ||
+                                            k.find("].force_factor") != std::string::npos);
+    const bool prep_key = k.rfind("geometry.", 0) == 0 || k.rfind("discretization.", 0) == 0 || (die_key && !die_solver_key);
     if (side == Side::solve && prep_key)
       throw Error("--set " + o.path + ": this key is used by rkprep; re-run rkprep with it");
     apply_override(root, o, name);

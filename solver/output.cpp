@@ -54,8 +54,11 @@ ResultWriter::ResultWriter(const std::string& case_dir, const Model& md, const s
 
 void ResultWriter::write_frame(const Model& md, const State& st, const std::vector<double>& velocity,
                                const Comm& comm) {
-  // Particle values of point quantities: q_I = sum_g w_g N_I(X_g) q_g / sum_g w_g N_I(X_g), summed
-  // over ranks in fixed point so every copy and every rank count gives the same value.
+  // Particle values of point quantities: the average q_I = sum_g a_gI q_g / sum_g a_gI over the points
+  // whose supports hold the particle, a_gI = w_g max(N_I(X_g), 0): positive weights, so a particle's
+  // value lies within its points' (a plastic strain is never negative, a von Mises stress never above
+  // the points' flow stress; the RK values N_I themselves can be negative). Summed over ranks in fixed
+  // point so every copy and every rank count gives the same value.
   std::vector<double> q(kProjected * md.m);
   double bound[kProjected] = {};
   for (std::size_t g = 0; g < md.m; ++g) {
@@ -79,7 +82,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
   for (std::size_t g = 0; g < md.m; ++g)
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
       for (int c = 0; c < kProjected; ++c)
-        partial_[kProjected * std::size_t(md.nbr[k]) + c] += scale[c].fixed(md.weight[g] * md.N[k] * q[kProjected * g + c]);
+        partial_[kProjected * std::size_t(md.nbr[k]) + c] += scale[c].fixed(md.weight[g] * std::max(md.N[k], 0.0) * q[kProjected * g + c]);
   exchange_.sum(partial_);
 
   // Displacements: the material's, u^h(X_I) = sum_J N_J(X_I) d_J (RK coefficients are not values).

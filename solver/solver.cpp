@@ -462,6 +462,21 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   comm.max(&mem_max, 1);
   comm.sum(mem_sum, 2);
   const double bytes_per_mb_point = 1048576.0 / std::max(counts[1], 1.0);
+  // Suspicious but legal: a die that never touched the part (another unit, a wrong place, a motion
+  // away from the part) leaves a run with no forming in it. Its work over the run (checkpointed) is 0.
+  std::vector<double> touched(dies->size());
+  for (std::size_t d = 0; d < dies->size(); ++d) {
+    const DieTotals& t = dies->totals()[d];
+    touched[d] = std::abs(t.press_work) + std::abs(t.contact_work) + std::abs(t.friction_work);
+  }
+  comm.sum(touched.data(), int(touched.size()));
+  std::vector<std::string> warnings;
+  for (std::size_t d = 0; d < dies->size(); ++d)
+    if (touched[d] == 0)
+      warnings.push_back("die '" + scene.dies[d].name + "' never touched the part in this run: check its CAD unit (dies[" +
+                         std::to_string(d) + "].unit), its position and its motion's direction");
+  if (comm.rank() == 0)
+    for (const auto& w : warnings) std::fprintf(stderr, "rksolve: warning: %s\n", w.c_str());
   if (comm.rank() == 0) {
     nlohmann::json phases = nlohmann::json::object();
     for (int p = 0; p < kPhaseCount; ++p) phases[kPhaseNames[p]] = {{"min_s", lo[p]}, {"max_s", hi[p]}};
@@ -493,7 +508,8 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
                         {"peak_memory_mb_max_rank", mem_max},
                         {"peak_bytes_per_point", mem_sum[0] * bytes_per_mb_point},
                         {"resident_bytes_per_point", mem_sum[1] * bytes_per_mb_point},
-                        {"phases", phases}};
+                        {"phases", phases},
+                        {"warnings", warnings}};
     std::ofstream(opt.case_dir + "/solve.json") << j.dump(2) << "\n";
     if (!opt.quiet && progress_shown) std::printf("\n");
     if (!opt.quiet)

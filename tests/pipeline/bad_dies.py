@@ -40,3 +40,27 @@ for sets, needle, what in (([f"geometry.cad={w / 'junk.step'}"], "junk.step: gms
     p = tools.prep(tools.case("bad_cad_case"), 1, scene=scene, sets=sets, expect_ok=False, timeout=60)
     rkcase.check(p.returncode != 0 and needle in p.stderr and p.stderr.count("error:") == 1,
                  f"{what}: {p.stderr.strip()}")
+
+# Suspicious but legal: the die pressing away from the part (direction +z) never touches it. The run
+# completes (exit 0) with a warning naming the die on stderr, in solve.json and in report.md.
+away = tools.case("die_moving_away")
+tools.prep(away, 1, scene=src / "scene.yaml", sets=["discretization.spacing=2.5e-3", "dies[0].motion.direction=[0,0,1]"])
+p = tools.solve(away, 1, sets=["time.end=0.2e-3", "time.output_interval=0.1e-3"])
+tools.post(away)
+warning = "die 'die' never touched the part in this run: check its CAD unit (dies[0].unit), its position and its motion"
+solve = __import__("json").loads((away / "solve.json").read_text())
+rkcase.check(p.returncode == 0 and f"rksolve: warning: {warning}" in p.stderr and any(warning in x for x in solve["warnings"])
+             and warning in (away / "report.md").read_text(), f"a die moving away: {p.stderr.strip()}")
+# and the same die pressing the part: no warning
+toward = tools.case("die_pressing")
+tools.prep(toward, 1, scene=src / "scene.yaml", sets=["discretization.spacing=2.5e-3"])
+p = tools.solve(toward, 1, sets=["time.end=0.2e-3", "time.output_interval=0.1e-3"])
+rkcase.check("warning" not in p.stderr and __import__("json").loads((toward / "solve.json").read_text())["warnings"] == [],
+             "the die pressing the part: no warning")
+# a die's CAD and unit are rkprep's (re-run it), its friction the solver's; a list entry that is not there
+p = tools.solve(toward, 1, sets=["dies[0].unit=m"], expect_ok=False)
+rkcase.check(p.returncode != 0 and "--set dies[0].unit: this key is used by rkprep" in p.stderr, f"rksolve: {p.stderr.strip()}")
+p = tools.solve(toward, 1, sets=["dies[1].friction=0.1"], expect_ok=False)
+rkcase.check(p.returncode != 0 and "the scene's 'dies' has 1 entries" in p.stderr, f"rksolve: {p.stderr.strip()}")
+p = tools.solve(toward, 1, sets=["dies[0].friction=0.1", "time.end=0.05e-3"])
+rkcase.check(p.returncode == 0, "rksolve --set dies[0].friction=0.1 runs")
