@@ -35,4 +35,4 @@ def summary(r: dict) -> str:
 
 
 if __name__ == "__main__":
-    main_of(__doc__, check, summary)
+    main_of(__doc__, check, summary, parts=("beam.geo",), what="clamped beam (geometry/beam)")

@@ -1,5 +1,6 @@
-"""What the case checks share (beam_check.py, elastic_bar_check.py): the command line CASE [--json],
-the check's numbers as JSON or as the check's one-line summary; the energy drift of a long run."""
+"""What the case scripts share: a CASE argument that must be a case folder of the expected scene (one
+clear message otherwise, never a traceback), the checks' command line CASE [--json] (the numbers as
+JSON or a one-line summary), and the energy drift of a long run."""
 import argparse
 import csv
 import json
@@ -17,11 +18,33 @@ def energy_drift(case: Path) -> dict:
             "energy_end_over_start": total[-1] / max(total[1], 1e-300)}
 
 
-def main_of(doc: str, check, summary) -> None:
+def case_folder(needs=("prep.json",)):
+    """An argparse type: a case folder holding `needs` (what the script reads), named in the message."""
+    def check(text: str) -> Path:
+        case = Path(text)
+        for f in needs:
+            if not (case / f).exists():
+                made_by = {"prep.json": "rkprep", "history.csv": "rksolve", "vtk/case.pvd": "rkpost"}.get(f, "rkprep")
+                raise argparse.ArgumentTypeError(f"{text}: not a case folder with {f} (written by {made_by})")
+        return case
+    return check
+
+
+def require_part(case: Path, parts, what: str) -> None:
+    """Exits with one message unless the case's part (geometry.cad of scene.resolved.yaml) is one of `parts`."""
+    text = (case / "scene.resolved.yaml").read_text() if (case / "scene.resolved.yaml").exists() else ""
+    cad = next((ln.split(":", 1)[1].strip() for ln in text.splitlines() if ln.strip().startswith("cad:")), "?")
+    if Path(cad).name not in parts:
+        raise SystemExit(f"{Path(sys.argv[0]).name}: {case}: expects a case of the {what}; this one's part is {Path(cad).name}")
+
+
+def main_of(doc: str, check, summary, needs=("history.csv",), parts=None, what="") -> None:
     ap = argparse.ArgumentParser(description=doc.splitlines()[0])
-    ap.add_argument("case", type=Path)
+    ap.add_argument("case", type=case_folder(needs))
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args()
+    if parts:
+        require_part(a.case, parts, what)
     r = check(a.case)
     print(json.dumps(r, indent=2) if a.json else summary(r))
     sys.exit(0)

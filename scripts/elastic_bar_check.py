@@ -46,4 +46,4 @@ def summary(r: dict) -> str:
 
 
 if __name__ == "__main__":
-    main_of(__doc__, check, summary)
+    main_of(__doc__, check, summary, parts=("elastic_bar.geo",), what="elastic bar (geometry/elastic_bar)")

@@ -14,6 +14,7 @@ and prints (or --json) the stroke reached, peak force, energy error and volume c
 (sum w_g J, elastic by construction), and the cells' through the particles less the points' (what the
 discretization lost or gained).
 """
+import argparse
 import json
 import sys
 import xml.etree.ElementTree as ET
@@ -28,6 +29,7 @@ import numpy as np  # noqa: E402
 import yaml  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from case_check import case_folder  # noqa: E402
 from history_plots import moving_dies, plot_die_forces, plot_energies, read_history  # noqa: E402
 
 
@@ -177,11 +179,18 @@ def plots(case: Path, stages: int) -> None:
 
 
 if __name__ == "__main__":
-    case = Path(sys.argv[1])
-    stages = int(sys.argv[sys.argv.index("--stages") + 1]) if "--stages" in sys.argv else 4
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0], formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 epilog="\n".join(__doc__.splitlines()[2:]))
+    ap.add_argument("case", type=case_folder(("prep.json", "history.csv", "vtk/case.pvd")))
+    ap.add_argument("--stages", type=int, default=4, help="sections drawn in stages.png (default 4)")
+    ap.add_argument("--json", action="store_true")
+    a = ap.parse_args()
+    case = a.case
+    if not moving_dies(read_history(case)[0].keys()):
+        raise SystemExit(f"forming_report.py: {case}: no die moves in this case (a forming report needs a press)")
     res = summary(case)
-    plots(case, stages)
-    if "--json" in sys.argv:
+    plots(case, max(a.stages, 1))
+    if a.json:
         print(json.dumps(res, indent=2))
     else:
         volume = ("not recorded" if res["final_volume_change"] is None else

@@ -6,8 +6,8 @@
   scripts/history_plots.py --compare OUT.png CASE[=LABEL] ...
                                        one die's running-mean force against stroke for several
                                        cases (a resolution study), the first moving die of each"""
+import argparse
 import csv
-import sys
 from pathlib import Path
 
 import matplotlib
@@ -115,7 +115,20 @@ def main(case: Path) -> None:
 
 
 if __name__ == "__main__":
-    if sys.argv[1:2] == ["--compare"]:
-        compare_forces(Path(sys.argv[2]), sys.argv[3:])
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0], formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 epilog="\n".join(__doc__.splitlines()[2:]))
+    ap.add_argument("case", nargs="*", help="CASE, or with --compare CASE[=LABEL] ...")
+    ap.add_argument("--compare", type=Path, metavar="OUT.png", help="one die's force against stroke for several cases")
+    a = ap.parse_args()
+    if not a.case:
+        ap.error("a CASE folder is needed")
+    for spec in a.case:
+        case = spec.partition("=")[0] if a.compare else spec
+        if not (Path(case) / "history.csv").exists():
+            ap.error(f"{case}: not a case folder with history.csv (written by rksolve)")
+    if a.compare:
+        compare_forces(a.compare, a.case)
+    elif len(a.case) > 1:
+        ap.error("one CASE (several: --compare OUT.png CASE ...)")
     else:
-        main(Path(sys.argv[1]))
+        main(Path(a.case[0]))

@@ -2,6 +2,7 @@
 """Plots of a Taylor bar case: impact-face radius and length against time (like the seed's Fig. 7,
 with the seed's final values marked) and the energy balance. Writes CASE/plots/*.png and
 CASE/plots/results.json (the key results against the seed's, shown by rkpost in report.md)."""
+import argparse
 import csv
 import json
 import sys
@@ -14,7 +15,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from history_plots import plot_energies, read_history  # noqa: E402
-from taylor_metrics import HISTORY, HISTORY_US, REFERENCE, frames_of, metrics  # noqa: E402
+from case_check import case_folder, require_part  # noqa: E402
+from taylor_metrics import HISTORY, HISTORY_US, REFERENCE, TAYLOR_PARTS, frames_of, metrics  # noqa: E402
 
 
 def main(case: Path) -> None:
@@ -53,4 +55,8 @@ def main(case: Path) -> None:
 
 
 if __name__ == "__main__":
-    main(Path(sys.argv[1]))
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("case", type=case_folder(("prep.json", "history.csv", "vtk/case.pvd")))
+    a = ap.parse_args()
+    require_part(a.case, TAYLOR_PARTS, "Taylor bar (geometry/taylor_bar)")
+    main(a.case)

@@ -38,4 +38,4 @@ def summary(r: dict) -> str:
 
 
 if __name__ == "__main__":
-    main_of(__doc__, check, summary)
+    main_of(__doc__, check, summary, needs=("prep.json", "vtk/case.pvd"))

@@ -20,6 +20,10 @@ from pathlib import Path
 import meshio
 import numpy as np
 
+from case_check import case_folder, require_part
+
+TAYLOR_PARTS = ("taylor_bar.geo", "taylor_bar_full.geo")  # the quarter and the whole bar
+
 REFERENCE = {  # converged FE (Foulk et al. 2021, via the Carina.jl Taylor benchmark), the 2007 paper's RKPM and FEM
     "footprint_radius_mm": {"converged": 7.22, "seed_rkpm": 7.30, "seed_fem": 7.38},
     "final_length_mm": {"converged": 21.45, "seed_rkpm": 21.48, "seed_fem": 21.46},
@@ -91,11 +95,15 @@ def history_errors(case: Path, axis: int = 2) -> dict:
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("case", type=Path)
+    ap.add_argument("case", type=case_folder(("prep.json", "vtk/case.pvd")))
     ap.add_argument("--frame", type=int, default=-1)
     ap.add_argument("--axis", default="z", choices="xyz")
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args()
+    require_part(a.case, TAYLOR_PARTS, "Taylor bar (geometry/taylor_bar)")
+    frames = len(frames_of(a.case))
+    if not -frames <= a.frame < frames:
+        raise SystemExit(f"taylor_metrics.py: --frame {a.frame}: the case has frames 0 to {frames - 1}")
     m = metrics(a.case, a.frame, "xyz".index(a.axis))
     if a.json:
         print(json.dumps(m, indent=2))

@@ -7,14 +7,16 @@ contact force rings with the stress waves, so each force is the mean of the hist
 +-1 % reduction of the point, against the mean of the closed form over the same rows.
   upsetting_check.py CASE [--json]
 """
+import argparse
 import csv
 import json
 import math
-import sys
 from pathlib import Path
 
 import meshio
 import numpy as np
+
+from case_check import case_folder, require_part
 
 E, K, EPS0, N = 71e9, 576.79e6, 0.01658, 0.3593
 D0 = H0 = 20e-3
@@ -54,12 +56,25 @@ def check(case: Path):
     return out
 
 
+def friction_of(case: Path) -> float:
+    text = (case / "scene.resolved.yaml").read_text()
+    return max((float(ln.split(":", 1)[1]) for ln in text.splitlines() if ln.strip().startswith("friction:")), default=0.0)
+
+
 if __name__ == "__main__":
-    res = check(Path(sys.argv[1]))
-    if "--json" in sys.argv:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("case", type=case_folder(("prep.json", "history.csv", "vtk/case.pvd")))
+    ap.add_argument("--json", action="store_true")
+    a = ap.parse_args()
+    require_part(a.case, ("billet.geo",), "upsetting (geometry/upsetting)")
+    res = check(a.case)
+    if a.json:
         print(json.dumps(res, indent=2))
     else:
-        print("reduction  force (kN)  exact (kN)  error")
+        mu = friction_of(a.case)
+        if mu > 0:  # the closed form is frictionless: with friction the difference is the friction's share
+            print(f"friction mu = {mu:g}: the differences below are from the frictionless closed form, not errors")
+        print("reduction  force (kN)  exact (kN)  " + ("difference" if mu > 0 else "error"))
         for f in res["force"]:
             print(f"  {100 * f['reduction']:3.0f} %   {f['force_kN']:9.2f}  {f['exact_kN']:9.2f}  {100 * f['error']:+6.2f} %")
         print(f"diameter {res['diameter_mm']:.3f} mm, exact {res['diameter_exact_mm']:.3f} mm "

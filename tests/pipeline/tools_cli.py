@@ -42,3 +42,20 @@ rkcase.check(len(rates) == 5 and all(r > 0 for r in rates), f"rkmachine: bandwid
 rkcase.check(m["build_vector_bits"] in (128, 256, 512), f"rkmachine: the build's vectors are {m['build_vector_bits']} bits")
 p = tools.run([tools.bin / "rkmachine", "--bogus"], expect_ok=False)
 rkcase.check(p.returncode == 2 and "unknown argument '--bogus'" in p.stderr, "rkmachine: bad argument")
+
+# the scripts: --help, and one message (no traceback) for a folder that is not a case or a case of
+# another scene
+scripts = ("taylor_metrics", "plot_taylor", "upsetting_check", "history_plots", "forming_report", "beam_check",
+           "elastic_bar_check", "pressure_oscillation")
+for name in scripts:
+    script = rkcase.ROOT / "scripts" / f"{name}.py"
+    p = tools.run(["/usr/bin/python3", script, "--help"], expect_ok=False)
+    rkcase.check(p.returncode == 0 and "usage:" in p.stdout, f"{name}.py --help")
+    p = tools.run(["/usr/bin/python3", script, tools.work / "not_a_case"], expect_ok=False)
+    rkcase.check(p.returncode != 0 and "Traceback" not in p.stderr and "not a case folder" in p.stderr,
+                 f"{name}.py on a non-case: {p.stderr.strip().splitlines()[-1]}")
+tools.solve(case, 1, sets=["time.end=1e-6"])
+tools.post(case)
+p = tools.run(["/usr/bin/python3", rkcase.ROOT / "scripts" / "upsetting_check.py", case], expect_ok=False)
+rkcase.check(p.returncode != 0 and "expects a case of the upsetting" in p.stderr and "taylor_bar.geo" in p.stderr,
+             f"upsetting_check.py on a Taylor bar: {p.stderr.strip()}")
