@@ -63,6 +63,10 @@ def metrics(case: Path, frame: int = -1, axis: int = 2) -> dict:
     tol = 1e-6 * (Z.max() - Z.min())
     face, end = np.abs(Z - wall) <= tol, np.abs(Z - Z.max()) <= tol  # material sets
     near = np.abs(z - z.min()) <= 0.3 * h
+
+    def largest(radii):  # mm; none there (a bar that left the wall): not a number
+        return 1e3 * float(radii.max()) if radii.size else float("nan")
+
     data = mesh.point_data
     return {
         "time_s": time,
@@ -73,7 +77,7 @@ def metrics(case: Path, frame: int = -1, axis: int = 2) -> dict:
         # the measures the reference does not use: the radius "on the wall" (0.3 h) falls with h as the
         # rim curls off; the radius within fixed heights of the wall, and the part's largest radius
         "radius_near_wall_mm": 1e3 * float(r[near].max()),
-        **{f"radius_{d:g}mm_mm": 1e3 * float(r[z - wall <= d * 1e-3].max()) for d in (0.1, 0.2)},
+        **{f"radius_{d:g}mm_mm": largest(r[z - wall <= d * 1e-3]) for d in (0.1, 0.2)},
         "max_radius_mm": 1e3 * float(r.max()),
         "max_eq_plastic_strain": float(np.max(data["eq_plastic_strain"])),
         "finite": bool(all(np.isfinite(np.asarray(v)).all() for v in data.values()) and np.isfinite(x).all()),

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -33,6 +34,11 @@
 
 namespace rk {
 namespace {
+
+// Ctrl-C (SIGINT) or a job scheduler's SIGTERM: the run stops at the next step on every rank, after
+// writing a checkpoint and a frame, so that --restart goes on from there.
+volatile std::sig_atomic_t g_interrupted = 0;
+extern "C" void request_stop(int signal) { g_interrupted = signal; }
 
 // Runs `fn` on every rank; an rk::Error on any rank becomes the same error on all ranks.
 template <class Fn>
@@ -188,9 +194,18 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   bool progress_shown = false;  // an updating line is on the terminal: end it before other output
   std::int64_t progress_step = st.step;
   const double progress_t0 = st.t;
-  if (!opt.quiet && comm.rank() == 0)
-    std::printf("rksolve: %d ranks, setup %.2f s, mass scaling %.3g, running to t = %g s\n", comm.size(), setup_s,
-                md.mass_scaling, t_end);
+  if (!opt.quiet && comm.rank() == 0) {
+    if (opt.restart)
+      std::printf("rksolve: %d ranks, restarted from the checkpoint of step %lld, t = %g s (setup %.2f s), running to "
+                  "t = %g s\n", comm.size(), static_cast<long long>(st.step), st.t, setup_s, t_end);
+    else
+      std::printf("rksolve: %d ranks, setup %.2f s, mass scaling %.3g, running to t = %g s\n", comm.size(), setup_s,
+                  md.mass_scaling, t_end);
+  }
+  g_interrupted = 0;
+  std::signal(SIGINT, request_stop);
+  std::signal(SIGTERM, request_stop);
+  bool stop_requested = false;  // a rank was interrupted: checkpoint, frame, then stop (every rank)
 
   for (;;) {
     timer.start();
@@ -210,6 +225,16 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
       collectively(comm, [&] { return write_checkpoint(opt.case_dir, md, st, clock, dies->totals()), 0; });
       timer.stop(kOutput);
     }
+    if (stop_requested) {
+      compute_deformation_gradient(md, st);  // the frame's stresses are this state's (t^n)
+      update_bulk_viscosity(md, st, scene.bulk_viscosity);
+      update_stress(md, st, pressure_bound);
+      write_frame(st.v);
+      std::ostringstream why;
+      why << "interrupted at step " << st.step << ", t = " << st.t
+          << " s: checkpoint and last frame written; `rksolve " << opt.case_dir << " --restart` goes on from here";
+      throw Error(why.str());
+    }
     compute_deformation_gradient(md, st);
     timer.stop(kDeformation);
     update_bulk_viscosity(md, st, scene.bulk_viscosity);
@@ -227,12 +252,13 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     // rank 0's clock decides whether a wall-clock checkpoint is due (written at the next step's top)
     const bool clock_due = comm.rank() == 0 && scene.output.checkpoint_minutes > 0 &&
                            comm.wtime() - last_checkpoint_wall >= 60 * scene.output.checkpoint_minutes;
-    double red[7] = {-stable.dt, bound, healthy ? 0.0 : 1.0, clock_due ? 1.0 : 0.0,
+    double red[8] = {-stable.dt, bound, healthy ? 0.0 : 1.0, clock_due ? 1.0 : 0.0,
                      update_strain > 0 ? largest_strain_since_update(md, st) : 0.0, dies->symmetry_depth() / h_min,
-                     health.pressure_ratio};
-    comm.max(red, 7);
+                     health.pressure_ratio, g_interrupted ? 1.0 : 0.0};
+    comm.max(red, 8);
     clock.max_pressure_ratio = std::max(clock.max_pressure_ratio, red[6]);
-    checkpoint_due = red[3] > 0;
+    stop_requested = red[7] > 0;
+    checkpoint_due = red[3] > 0 || stop_requested;
     update_due = update_strain > 0 && red[4] > update_strain;
     timer.stop(kTimeStep);
     if (-red[0] < scene.health.min_dt_ratio * dt0) {  // a cell has collapsed: the run would never end

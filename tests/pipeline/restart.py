@@ -89,6 +89,28 @@ tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", killed, "--quiet", "--rest
           sum((["--set", s] for s in long), []))
 rkcase.check(same(final(whole), final(killed)), "restarted after SIGKILL: final state bitwise equal to the uninterrupted run")
 
+# Ctrl-C (SIGINT to mpirun, which passes it on as SIGTERM): every rank stops at the same step after a
+# checkpoint and a frame, with one message saying how to go on; the restart ends bitwise equal.
+interrupted = copy("interrupted")
+args = ["mpirun", "-np", "2", str(tools.bin / "rksolve"), str(interrupted)] + sum((["--set", s] for s in long), [])
+job = subprocess.Popen(args, env=tools.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+ckpt = interrupted / "checkpoint" / "rank_0001.h5"
+deadline = time.time() + 120
+while not ckpt.exists() and time.time() < deadline and job.poll() is None:  # well into the run
+    time.sleep(0.05)
+job.send_signal(signal.SIGINT)
+_, err = job.communicate(timeout=60)
+said = [ln for ln in err.splitlines() if "rksolve: error" in ln]
+m = re.search(r"interrupted at step (\d+), t = ([-+0-9.eE]+) s: checkpoint and last frame written; `rksolve \S+ --restart` "
+              r"goes on from here", said[0]) if said else None
+rkcase.check(job.returncode != 0 and len(said) == 1 and m is not None, f"Ctrl-C: exit {job.returncode}, {said}")
+steps = {int(re.search(r"\(0,0\):\s*(\d+)", tools.run(["h5dump", "-d", "clock/integers", p]).stdout)[1])
+         for p in (interrupted / "checkpoint").glob("rank_*.h5")}
+rkcase.check(steps == {int(m[1])}, f"both ranks' checkpoints are at the interrupted step {m[1]}: {steps}")
+p = tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", interrupted, "--restart"] + sum((["--set", s] for s in long), []))
+rkcase.check(f"restarted from the checkpoint of step {m[1]}" in p.stdout, "the restart says where it goes on from")
+rkcase.check(same(final(whole), final(interrupted)), "restarted after Ctrl-C: final state bitwise equal")
+
 # Killed between the ranks' writes: rank 1's newest checkpoint is the one before rank 0's.
 behind = copy("kill_behind")
 tools.solve(behind, 2, sets=["time.end=8e-6"] + long[1:])
