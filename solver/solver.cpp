@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -193,7 +194,11 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   const bool terminal = !launched && ::isatty(::fileno(stdout)) != 0;
   bool progress_shown = false;  // an updating line is on the terminal: end it before other output
   std::int64_t progress_step = st.step;
-  const double progress_t0 = st.t;
+  double progress_t = st.t;
+  // the progress line's press: the first die's stroke column (its force follows it), -1 without dies
+  const auto stroke_column = scene.dies.empty() ? columns.end()
+                                                : std::find(columns.begin(), columns.end(), scene.dies[0].name + ".stroke");
+  const std::ptrdiff_t die_column = stroke_column == columns.end() ? -1 : stroke_column - columns.begin();
   if (!opt.quiet && comm.rank() == 0) {
     if (opt.restart)
       std::printf("rksolve: %d ranks, restarted from the checkpoint of step %lld, t = %g s (setup %.2f s), running to "
@@ -460,13 +465,21 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
     timer.stop(kUpdate);
     if (!opt.quiet && comm.rank() == 0 && comm.wtime() - last_progress > (terminal ? 2.0 : 10.0)) {
       const double now = comm.wtime(), rate = double(st.step - progress_step) / (now - last_progress);
-      const double eta = (now - wall0 - setup_s) * (t_end - st.t) / std::max(st.t - progress_t0, 1e-300);
+      // the ETA from the last interval's pace (simulated seconds per wall second), not the run's average:
+      // in forming the step keeps shrinking, and the average promised about half the time it took
+      const double pace = (st.t - progress_t) / (now - last_progress);
+      const double eta = pace > 0 ? (t_end - st.t) / pace : 0.0;
       last_progress = now;
       progress_step = st.step;
+      progress_t = st.t;
+      char press[96] = "";  // the first die's stroke and force, from the last history row
+      if (die_column >= 0)
+        std::snprintf(press, sizeof press, "  %s %.4g mm, %.4g kN", columns[std::size_t(die_column)].c_str(),
+                      1e3 * row[std::size_t(die_column)], 1e-3 * row[std::size_t(die_column) + 1]);
       // a terminal gets one updating line; a pipe or a log gets a plain line every 10 s
-      std::printf("%srksolve: t = %.4g s (%5.1f %%)  step %lld  %.0f steps/s  dt = %.3g s  energy error %.2e  ETA %.0f s%s",
-                  terminal ? "\r" : "", st.t, 100 * st.t / t_end, static_cast<long long>(st.step), rate, dt, last_error,
-                  eta, terminal ? "   " : "\n");
+      std::printf("%srksolve: t = %.4g s (%5.1f %%)  step %lld  %.0f steps/s  dt = %.3g s%s  energy error %.2e  ETA %.0f s%s",
+                  terminal ? "\r" : "", st.t, 100 * st.t / t_end, static_cast<long long>(st.step), rate, dt, press,
+                  last_error, eta, terminal ? "   " : "\n");
       std::fflush(stdout);
       progress_shown = terminal;
     }
