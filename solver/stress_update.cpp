@@ -118,7 +118,7 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
 
 namespace rk {
 
-double impact_pressure(const Scene& scene, const double lo[3], const double hi[3]) {
+double fastest_speed(const Scene& scene, const double lo[3], const double hi[3]) {
   double v2 = 0;
   for (int corner = 0; corner < 8; ++corner) {  // v0 + G X is linear: its largest speed is at a corner
     const double X[3] = {corner & 1 ? hi[0] : lo[0], corner & 2 ? hi[1] : lo[1], corner & 4 ? hi[2] : lo[2]};
@@ -137,10 +137,14 @@ double impact_pressure(const Scene& scene, const double lo[3], const double hi[3
   };
   for (const auto& d : scene.dies) fastest(d.motion);
   for (const auto& f : scene.prescribed_faces) fastest(f.motion);
+  return v;
+}
+
+double impact_pressure(const Scene& scene, const double lo[3], const double hi[3]) {
   const Material& mat = scene.material;
   const double nu = mat.poisson_ratio;
   const double wave_modulus = mat.youngs_modulus * (1 - nu) / ((1 + nu) * (1 - 2 * nu));  // K + 4G/3
-  return std::sqrt(mat.density * wave_modulus) * v;
+  return std::sqrt(mat.density * wave_modulus) * fastest_speed(scene, lo, hi);
 }
 
 }  // namespace rk
