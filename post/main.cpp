@@ -76,6 +76,33 @@ Frame read_frame(const std::string& case_dir, int ranks, int f, const std::vecto
   return fr;
 }
 
+// A case prepared but not solved: its particles at t = 0 from the subdomain files (each rank's owned
+// ones), at rest but for the scene's initial velocity, every other field 0.
+Frame prepared_frame(const std::string& case_dir, int ranks, const std::vector<Field>& fields, const rk::Scene& scene) {
+  Frame fr;
+  fr.values.resize(fields.size());
+  for (int r = 0; r < ranks; ++r) {
+    const rk::Subdomain sub = rk::read_subdomain(rk::subdomain_path(case_dir, r), r, ranks, scene.prep_hash);
+    for (std::size_t I = 0; I < sub.particle_count(); ++I) {
+      if (sub.owner[I] != r) continue;
+      fr.gid.push_back(sub.global_id[I]);
+      fr.rank.push_back(r);
+      const double* X = &sub.X[3 * I];
+      fr.x.insert(fr.x.end(), X, X + 3);
+      for (std::size_t k = 0; k < fields.size(); ++k)
+        for (int c = 0; c < fields[k].components; ++c) {
+          double v = 0;
+          if (std::string(fields[k].name) == "velocity") {
+            const auto& G = scene.initial.velocity_gradient;
+            v = scene.initial.velocity[c] + G[3 * c] * X[0] + G[3 * c + 1] * X[1] + G[3 * c + 2] * X[2];
+          }
+          fr.values[k].push_back(v);
+        }
+    }
+  }
+  return fr;
+}
+
 // Reorders by global id and checks that every particle appears exactly once.
 void sort_by_global_id(Frame& fr, const std::vector<Field>& fields, const std::string& where) {
   const std::size_t n = fr.gid.size();
@@ -174,7 +201,9 @@ int run(int argc, char** argv) {
   if (!prep_file) throw rk::Error(case_dir + "/prep.json: not found (is this a case directory written by rkprep?)");
   const int ranks = nlohmann::json::parse(prep_file)["ranks"].get<int>();
   std::int64_t frames = 0;  // the highest frame any rank wrote, plus one
-  for (int r = 0; r < ranks; ++r) {
+  // no results at all: a case prepared and not solved yet, shown as it starts (frame 0 from the subdomains)
+  const bool solved = fs::exists(case_dir + "/results");
+  for (int r = 0; r < ranks && solved; ++r) {
     const std::string dir = fs::path(frame_file(case_dir, r, 0)).parent_path().string();
     if (!fs::is_directory(dir)) throw rk::Error(dir + ": not found (has rksolve run on this case?)");
     for (const auto& entry : fs::directory_iterator(dir)) {
@@ -191,14 +220,14 @@ int run(int argc, char** argv) {
   if (!scene.dies.empty())
     dies = rk::read_subdomain(rk::subdomain_path(case_dir, 0), 0, ranks, scene.prep_hash).dies;
   const std::vector<Field> fields = select_fields(field_list);
-  const std::vector<int> chosen = select_frames(frame_list, int(frames));
+  const std::vector<int> chosen = select_frames(frame_list, solved ? int(frames) : 1);
   const auto [cells, cell_rank] = read_cells(case_dir, ranks, scene.prep_hash);
   std::vector<rk::PvdEntry> index;
   int skipped = 0;
   for (int f : chosen) {
     Frame fr;
     try {  // a frame missing on a rank or half written is reported and skipped; the rest is merged
-      fr = read_frame(case_dir, ranks, f, fields, scene.prep_hash);
+      fr = solved ? read_frame(case_dir, ranks, f, fields, scene.prep_hash) : prepared_frame(case_dir, ranks, fields, scene);
       sort_by_global_id(fr, fields, case_dir + " frame " + std::to_string(f));
     } catch (const ForeignFrame&) {
       throw;
@@ -227,6 +256,12 @@ int run(int argc, char** argv) {
     }
   }
   rk::write_pvd(case_dir + "/vtk/case.pvd", index);
+  if (!solved) {  // nothing solved: the discretization only (report.md comes with a run)
+    if (!quiet)
+      std::printf("rkpost: %s is prepared, not solved: %s/vtk/case.pvd shows its particles, its cells by rank and "
+                  "%zu dies at t = 0\n", case_dir.c_str(), case_dir.c_str(), dies.size());
+    return 0;
+  }
   rk::write_report(case_dir);
   if (!fs::exists(case_dir + "/solve.json"))  // a run a health check stopped: its frames are there to look at
     std::fprintf(stderr, "rkpost: warning: %s has no solve.json: the run did not finish (report.md says so)\n",

@@ -59,3 +59,18 @@ tools.post(case)
 p = tools.run(["/usr/bin/python3", rkcase.ROOT / "scripts" / "upsetting_check.py", case], expect_ok=False)
 rkcase.check(p.returncode != 0 and "expects a case of the upsetting" in p.stderr and "taylor_bar.geo" in p.stderr,
              f"upsetting_check.py on a Taylor bar: {p.stderr.strip()}")
+
+# rkpost on a case prepared and not solved: the discretization to look at before solving (particles
+# with the initial velocity, cells by rank, the dies at t = 0), exit 0
+import meshio  # noqa: E402
+import numpy as np  # noqa: E402
+fresh = tools.case("prepared_only")
+tools.prep(fresh, 2, scene=rkcase.ROOT / "geometry" / "upsetting" / "scene.yaml", sets=["discretization.spacing=2.5e-3"])
+p = tools.run([tools.bin / "rkpost", fresh], expect_ok=False)
+prep = __import__("json").loads((fresh / "prep.json").read_text())
+part = meshio.read(fresh / "vtk" / "frame_00000.vtu")
+rkcase.check(p.returncode == 0 and "is prepared, not solved" in p.stdout and len(part.points) == prep["particles"]
+             and len(part.cells[0].data) == prep["cells"] and sorted(np.unique(part.cell_data["rank"][0])) == [0, 1]
+             and (fresh / "vtk" / "die_die_00000.vtu").exists() and not (fresh / "report.md").exists(),
+             f"rkpost on a prepared case: {len(part.points)} particles, {len(part.cells[0].data)} cells on ranks 0 and 1, "
+             "the die at t = 0")
