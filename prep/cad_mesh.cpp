@@ -40,6 +40,18 @@ void check_size(const MeshRequest& r) {
   }
 }
 
+// CAD without a script of its own (STEP, IGES, BREP, STL) is meshed in tetrahedra of 2 h to 3 h,
+// each split into four hexahedra (whose edges run from a half to a sixth of the tetrahedron's): the
+// median cell edge then lands near h (a 20 x 10 x 10 mm STEP box: 0.59 / 0.76 / 1.08 h at h = 2.5 / 1
+// / 0.5 mm; a 10 mm STL cube 0.55 / 0.70 / 1.08 h at 2 / 1 / 0.5 mm; measured 2026-12-02). With the
+// minimum at h / 2, as before, gmsh meshed far finer than asked (0.31 h on the cube at 2 mm, and the
+// same 5607 particles at any spacing).
+void set_tet_size(double h) {
+  gmsh::option::setNumber("Mesh.MeshSizeMax", 3 * h);
+  gmsh::option::setNumber("Mesh.MeshSizeMin", 2 * h);
+  gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 2);  // all hexahedra
+}
+
 VolumeMesh mesh_with_gmsh(const MeshRequest& r) {
   const std::string ext = lower_extension(r.cad);
   const double h = r.spacing / r.unit;  // in CAD units
@@ -48,9 +60,7 @@ VolumeMesh mesh_with_gmsh(const MeshRequest& r) {
     gmsh::open(r.cad);
   } else if (ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs" || ext == ".brep") {
     gmsh::merge(r.cad);
-    gmsh::option::setNumber("Mesh.MeshSizeMax", 2 * h);   // subdivision halves the edges
-    gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * h);
-    gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 2);  // all hexahedra
+    set_tet_size(h);
   } else if (ext == ".stl") {
     check_stl_solid(r.cad);
     gmsh::merge(r.cad);
@@ -62,8 +72,7 @@ VolumeMesh mesh_with_gmsh(const MeshRequest& r) {
     for (auto [dim, tag] : surfaces) tags.push_back(tag);
     gmsh::model::geo::addVolume({gmsh::model::geo::addSurfaceLoop(tags)});
     gmsh::model::geo::synchronize();
-    gmsh::option::setNumber("Mesh.MeshSizeMax", 2 * h);
-    gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 2);
+    set_tet_size(h);
   } else {
     throw Error(r.cad + ": unsupported CAD format '" + ext + "' (use .geo, .step, .iges, .brep or .stl)");
   }
@@ -137,6 +146,28 @@ VolumeMesh mesh_cad(const MeshRequest& r) {
   } catch (const std::string& e) {  // gmsh 4.8 throws std::string
     throw Error(r.cad + ": gmsh failed: " + e);
   }
+}
+
+double median_edge(const VolumeMesh& mesh) {
+  static const int hex[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  static const int tet[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+  std::vector<double> edges;
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
+    const std::int32_t* n = &mesh.cell_nodes[std::size_t(mesh.cell_offsets[c])];
+    const bool is_hex = mesh.cell_offsets[c + 1] - mesh.cell_offsets[c] == 8;
+    for (int e = 0; e < (is_hex ? 12 : 6); ++e) {
+      const int a = is_hex ? hex[e][0] : tet[e][0], b = is_hex ? hex[e][1] : tet[e][1];
+      double d2 = 0;
+      for (int i = 0; i < 3; ++i) {
+        const double d = mesh.X[3 * std::size_t(n[a]) + i] - mesh.X[3 * std::size_t(n[b]) + i];
+        d2 += d * d;
+      }
+      edges.push_back(std::sqrt(d2));
+    }
+  }
+  if (edges.empty()) return 0;
+  std::nth_element(edges.begin(), edges.begin() + std::ptrdiff_t(edges.size() / 2), edges.end());
+  return edges[edges.size() / 2];
 }
 
 }  // namespace rk

@@ -28,4 +28,8 @@ struct MeshRequest {
 // (as with `gmsh -setnumber h ...`); other CAD is meshed with all-hex subdivision at that spacing.
 VolumeMesh mesh_cad(const MeshRequest& request);
 
+// The spacing the mesh achieved: the median length of its cells' edges (metres), to set beside the
+// asked discretization.spacing (a CAD's own features can force a finer mesh).
+double median_edge(const VolumeMesh& mesh);
+
 }  // namespace rk

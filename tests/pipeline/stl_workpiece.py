@@ -1,7 +1,7 @@
 """Workpieces from STL: CGAL checks the facets bound a volume, gmsh meshes it. A closed box (10 x 10 x
 20 mm) gives the exact volume and the mass rho V (the initial kinetic energy's closed form), and
 dropped at 1 m/s onto a rigid wall it meets it with the impulse of the same box from a .geo meshed
-the same way (tetrahedra of up to 2 h subdivided into hexahedra), within twice the spread of that
+the same way (tetrahedra of 2 h to 3 h subdivided into hexahedra), within twice the spread of that
 box's discretizations; an open, a partly flipped and an inward-facing STL are each one clear error
 naming the file."""
 import csv
@@ -64,17 +64,17 @@ rkcase.check(abs(ke0 / (0.5 * 2700 * 2e-6 * 1.0**2) - 1) < 1e-9, f"initial kinet
 # The same box from a .geo, meshed as rkprep meshes an STL. Both run without bulk viscosity: the
 # check compares the part that the two CAD routes give, not how each mesh's cells spread the impact's
 # front (with the default viscosity they are 1.55 % apart, measured 2026-12-02). Measured mean wall
-# force over the 3 us: 1302.63 N from the STL (5851 particles), 1311.92 N from this .geo (5705
-# particles), -0.71 % (2026-12-02); the tolerance 0.8 % is twice the 0.41 % between two .geo
+# force over the 3 us (45 steps): 1217.95 N from the STL, 1220.07 N from this .geo (1441 particles
+# each), -0.17 % (2026-12-02); the tolerance 0.8 % is twice the 0.41 % between two .geo
 # discretizations of the box (this one and structured hexahedra, measured 2026-11). (A slender bar's
 # rho c0 v A would be 1375 N; this box is 2:1 and the contact ramps up over the first steps.)
 (w / "box_geo.geo").write_text('SetFactory("OpenCASCADE");\nBox(1) = {0, 0, 0, 10, 10, 20};\n'
-                               "Mesh.MeshSizeMax = 2 * h;\nMesh.SubdivisionAlgorithm = 2;\n")
+                               "Mesh.MeshSizeMax = 3 * h;\nMesh.MeshSizeMin = 2 * h;\nMesh.SubdivisionAlgorithm = 2;\n")
 geo = tools.case("geo_box")
 tools.prep(geo, 2, scene=scene_for("box_geo.geo"))
 tools.solve(geo, 2, sets=no_viscosity)
 (f_stl, rows), (f_geo, _) = mean_wall_force(case), mean_wall_force(geo)
-rkcase.check(rows > 50 and abs(f_stl / f_geo - 1) < 0.008,
+rkcase.check(rows > 40 and abs(f_stl / f_geo - 1) < 0.008,
              f"dropped onto a wall at 1 m/s: mean wall force over 3 us {f_stl:.2f} N from the STL, {f_geo:.2f} N from "
              f"the .geo ({100 * (f_stl / f_geo - 1):+.2f} %, within 0.8 %)")
 for name, kw, needle in (("open", {"keep": 11}, "is not watertight"),
