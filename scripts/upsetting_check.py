@@ -66,7 +66,7 @@ if __name__ == "__main__":
     ap.add_argument("case", type=case_folder(("prep.json", "history.csv", "vtk/case.pvd")))
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args()
-    require_part(a.case, ("billet.geo",), "upsetting (geometry/upsetting)")
+    require_part(a.case, ("billet.geo", "billet.step"), "upsetting (geometry/upsetting, upsetting_step)")
     res = check(a.case)
     if a.json:
         print(json.dumps(res, indent=2))
