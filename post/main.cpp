@@ -243,7 +243,7 @@ int run(int argc, char** argv) {
     for (std::size_t k = 0; k < fields.size(); ++k) data.push_back({fields[k].name, fields[k].components, fr.values[k], {}});
     data.push_back({"rank", 1, {}, fr.rank});
     rk::write_vtu(case_dir + "/vtk/" + name, fr.x, data, cells, {{"rank", 1, {}, cell_rank}}, !uncompressed);
-    index.push_back({fr.time, 0, name});
+    index.push_back({fr.time, 0, name, "part"});
     for (std::size_t k = 0; k < dies.size(); ++k) {
       const auto& die = scene.dies[k];
       std::vector<double> x = dies[k].vertices;
@@ -252,7 +252,7 @@ int run(int argc, char** argv) {
       char file[160];
       std::snprintf(file, sizeof file, "die_%s_%05d.vtu", die.name.c_str(), f);
       rk::write_vtu(case_dir + "/vtk/" + file, x, {}, rk::VtuCells::triangles(dies[k].triangles), {}, !uncompressed);
-      index.push_back({fr.time, int(k + 1), file});
+      index.push_back({fr.time, int(k + 1), file, die.name});
     }
   }
   rk::write_pvd(case_dir + "/vtk/case.pvd", index);

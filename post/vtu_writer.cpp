@@ -129,7 +129,8 @@ void write_pvd(const std::string& path, const std::vector<PvdEntry>& entries) {
   f << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
   f.precision(12);
   for (const auto& e : entries)
-    f << "    <DataSet timestep=\"" << e.time << "\" part=\"" << e.part << "\" file=\"" << e.file << "\"/>\n";
+    f << "    <DataSet timestep=\"" << e.time << "\" part=\"" << e.part << "\" name=\"" << e.name << "\" file=\""
+      << e.file << "\"/>\n";
   f << "  </Collection>\n</VTKFile>\n";
 }
 

@@ -32,6 +32,7 @@ struct PvdEntry {
   double time;
   int part;  // 0: the workpiece, 1..: the dies
   std::string file;
+  std::string name;  // the block's name in ParaView ("part", or the die's name)
 };
 void write_pvd(const std::string& path, const std::vector<PvdEntry>& entries);
 

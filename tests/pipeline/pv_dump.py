@@ -12,7 +12,10 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 vtk_dir = Path(sys.argv[1]) / "vtk"
 series = PVDReader(FileName=str(vtk_dir / "case.pvd"))
 series.UpdatePipelineInformation()
-out = {"times": list(series.TimestepValues), "datasets": []}
+series.UpdatePipeline()
+blocks = sm.Fetch(series)  # the blocks' names, as ParaView's pipeline browser shows them
+out = {"times": list(series.TimestepValues), "datasets": [],
+       "blocks": [blocks.GetMetaData(i).Get(blocks.NAME()) for i in range(blocks.GetNumberOfBlocks())]}
 for d in ET.parse(vtk_dir / "case.pvd").getroot().iter("DataSet"):
     grid = sm.Fetch(XMLUnstructuredGridReader(FileName=[str(vtk_dir / d.get("file"))]))
     pd, cd = grid.GetPointData(), grid.GetCellData()

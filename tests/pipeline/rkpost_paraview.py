@@ -48,6 +48,7 @@ pv = paraview_read(case)
 parts = [d for d in pv["datasets"] if d["part"] == 0]
 dies = [d for d in pv["datasets"] if d["part"] == 1]
 rkcase.check(len(parts) == 3 and len(pv["times"]) == 3, f"ParaView reads case.pvd: {len(parts)} frames at times {pv['times']}")
+rkcase.check(pv["blocks"] == ["part", "floor"], f"ParaView names the blocks by what they are: {pv['blocks']}")
 rkcase.check(len(dies) == len(parts) and all(d["cells"] > 0 and d["cell_types"] == [5] for d in dies),
              f"the die 'floor' is in every frame as {dies[0]['cells']} triangles")
 fields = {"global_id": 1, "displacement": 3, "velocity": 3, "eq_plastic_strain": 1, "von_mises": 1, "pressure": 1,
