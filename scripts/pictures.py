@@ -7,6 +7,7 @@ integration cells coloured by the rank that computes them (the seed's Figs. 8c, 
 
 Writes CASE/plots/part_ep_FFFFF.png and CASE/plots/part_rank_FFFFF.png."""
 import argparse
+import json
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -20,7 +21,24 @@ def collection(case: Path):
     return [(float(d.get("timestep")), int(d.get("part")), case / "vtk" / d.get("file")) for d in root.iter("DataSet")]
 
 
-def render(part_file, die_files, out, colour, title, size, legend=True):
+def time_text(t: float, end: float) -> str:
+    """t in the unit that suits the whole run (us for an impact, ms for a forging stroke, s beyond)."""
+    scale, unit = (1e6, "us") if end < 1e-3 else (1e3, "ms") if end < 1 else (1.0, "s")
+    return f"t = {scale * t:.4g} {unit}"
+
+
+def largest(part_file, name):
+    """The largest value of a point field in a frame (its colour scale's top)."""
+    reader = XMLUnstructuredGridReader(FileName=[str(part_file)])
+    reader.UpdatePipeline()
+    top = reader.PointData[name].GetRange()[1]
+    Delete(reader)
+    return top
+
+
+def render(part_file, die_files, out, colour, title, size, top=None, ranks=0):
+    """The part coloured by `colour`: a point field on [0, top] (the same scale for every frame), or the
+    cells' rank as categories (ranks > 0: one colour and legend entry per rank)."""
     view = CreateView("RenderView")
     view.ViewSize = size
     view.Background = [1, 1, 1]
@@ -36,14 +54,20 @@ def render(part_file, die_files, out, colour, title, size, legend=True):
     shown.Ambient, shown.Diffuse = 0.3, 0.8  # the faces turned from the headlight stay readable
     ColorBy(shown, colour)
     lut = GetColorTransferFunction(colour[1])
-    lut.ApplyPreset("Rainbow Uniform" if colour[1] == "rank" else "Turbo", True)
-    shown.RescaleTransferFunctionToDataRange(True, False)
-    if legend:
-        bar = GetScalarBar(lut, view)
-        bar.Title = title
-        bar.ComponentTitle = ""
-        bar.TitleColor = bar.LabelColor = [0, 0, 0]
-        shown.SetScalarBarVisibility(view, True)
+    if ranks:  # categorical: rank r is a colour of its own, named in the legend
+        lut.InterpretValuesAsCategories = 1
+        lut.AnnotationsInitialized = 1
+        lut.Annotations = [v for r in range(ranks) for v in (str(r), f"rank {r}")]
+        lut.ApplyPreset("Brewer Qualitative Set1" if ranks <= 9 else "Rainbow Uniform", True)
+    else:  # a continuous field from 0 (a frame at rest draws 0 to the run's top, not 0 to 1e-38)
+        lut.ApplyPreset("Turbo", True)
+        lut.RescaleTransferFunction(0.0, max(top or 0.0, 1e-3))
+        lut.AutomaticRescaleRangeMode = "Never"
+    bar = GetScalarBar(lut, view)
+    bar.Title = title
+    bar.ComponentTitle = ""
+    bar.TitleColor = bar.LabelColor = [0, 0, 0]
+    shown.SetScalarBarVisibility(view, True)
     for f in die_files:
         die = XMLUnstructuredGridReader(FileName=[str(f)])
         d = Show(die, view)
@@ -67,16 +91,20 @@ def main():
     size = [int(v) for v in a.size.split("x")]
     items = collection(a.case)
     times = sorted({t for t, part, _ in items})
+    ranks = json.loads((a.case / "prep.json").read_text())["ranks"]
+    chosen = sorted({int(v) % len(times) for v in a.frames.split(",")})
+    first_part = {t: f for t, p, f in reversed(items) if p == 0}
+    top = max(largest(first_part[times[k]], "eq_plastic_strain") for k in chosen)
     out = a.case / "plots"
     out.mkdir(exist_ok=True)
-    for k in sorted({int(v) % len(times) for v in a.frames.split(",")}):
+    for k in chosen:
         t = times[k]
         part = [f for tt, p, f in items if tt == t and p == 0][0]
         dies = [f for tt, p, f in items if tt == t and p > 0]
         stem = part.stem.replace("frame_", "")
         render(part, dies, out / f"part_ep_{stem}.png", ("POINTS", "eq_plastic_strain"),
-               f"eq. plastic strain, t = {1e6 * t:.1f} us", size)
-        render(part, [], out / f"part_rank_{stem}.png", ("CELLS", "rank"), "rank", size)
+               f"eq. plastic strain, {time_text(t, times[-1])}", size, top=top)
+        render(part, [], out / f"part_rank_{stem}.png", ("CELLS", "rank"), "rank", size, ranks=ranks)
         print(f"pictures: {out}/part_ep_{stem}.png, part_rank_{stem}.png (t = {t:g} s)")
 
 
