@@ -11,6 +11,7 @@
 
 #include "cli.hpp"
 #include "h5file.hpp"
+#include "pictures.hpp"
 #include "report.hpp"
 #include "scene.hpp"
 #include "subdomain.hpp"
@@ -191,6 +192,8 @@ int run(int argc, char** argv) {
                  "point fields to write: all, or a list of displacement, velocity, eq_plastic_strain, von_mises, "
                  "pressure, stress (global_id and rank are always written)");
   app.add_flag("--uncompressed", uncompressed, "write the VTK arrays without zlib compression");
+  bool no_pictures = false;
+  app.add_flag("--no-pictures", no_pictures, "skip the plots and ParaView pictures (CASE/plots/)");
   app.add_flag("--quiet", quiet, "print nothing but errors");
   try {
     app.parse(argc, argv);
@@ -262,6 +265,7 @@ int run(int argc, char** argv) {
                   "%zu dies at t = 0\n", case_dir.c_str(), case_dir.c_str(), dies.size());
     return 0;
   }
+  if (!no_pictures) rk::make_pictures(case_dir, quiet);  // before the report, which lists them
   rk::write_report(case_dir);
   if (!fs::exists(case_dir + "/solve.json"))  // a run a health check stopped: its frames are there to look at
     std::fprintf(stderr, "rkpost: warning: %s has no solve.json: the run did not finish (report.md says so)\n",

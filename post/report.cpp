@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -51,9 +53,29 @@ void write_report(const std::string& case_dir) {
   const nlohmann::json solve = solve_file ? nlohmann::json::parse(solve_file) : nlohmann::json::object();
   std::string header, line, last;
   std::getline(hist, header);
-  while (std::getline(hist, line))
-    if (!line.empty()) last = line;
-  const auto names = split(header), values = split(last);
+  const auto names = split(header);
+  // each moving die (a `.stroke` and a `.force` column): its largest press force and the stroke there
+  struct Press {
+    std::string die;
+    std::size_t stroke = 0;
+    double peak = 0, at = 0, travel = 0;  // travel: the largest |stroke| (0: a die that does not move)
+  };
+  std::vector<Press> presses;
+  for (std::size_t k = 0; k + 1 < names.size(); ++k)
+    if (names[k].ends_with(".stroke") && names[k + 1] == names[k].substr(0, names[k].size() - 7) + ".force")
+      presses.push_back({names[k].substr(0, names[k].size() - 7), k});
+  while (std::getline(hist, line)) {
+    if (line.empty()) continue;
+    last = line;
+    const auto row = split(line);
+    for (auto& p : presses) {
+      if (p.stroke + 1 >= row.size()) continue;
+      p.travel = std::max(p.travel, std::abs(std::stod(row[p.stroke])));
+      if (std::abs(std::stod(row[p.stroke + 1])) > std::abs(p.peak))
+        p.peak = std::stod(row[p.stroke + 1]), p.at = std::stod(row[p.stroke]);
+    }
+  }
+  const auto values = split(last);
 
   std::ofstream r(case_dir + "/report.md");
   r << "# rkforge run report\n\n";
@@ -110,12 +132,20 @@ void write_report(const std::string& case_dir) {
       }
     }
   }
+  std::erase_if(presses, [](const Press& p) { return p.travel == 0; });  // a die at rest is no press
+  if (!presses.empty()) {
+    r << "\n## Press force\n\n| die | largest force (whole part) | at stroke |\n|---|---|---|\n";
+    for (const auto& p : presses) r << "| " << p.die << " | " << num(p.peak / 1e3) << " kN | " << num(1e3 * p.at) << " mm |\n";
+    if (fs::exists(case_dir + "/plots/force_stroke.png")) r << "\n![force against stroke](plots/force_stroke.png)\n";
+  }
   r << "\n## Files\n\n- ParaView: `vtk/case.pvd` (the part, its integration cells with their rank, and the dies over "
        "time)\n";
+  std::vector<std::string> pictures;
   if (fs::exists(case_dir + "/plots"))
     for (const auto& e : fs::directory_iterator(case_dir + "/plots"))
-      if (e.path().extension() == ".png")
-        r << "- ![" << e.path().stem().string() << "](plots/" << e.path().filename().string() << ")\n";
+      if (e.path().extension() == ".png") pictures.push_back(e.path().filename().string());
+  std::sort(pictures.begin(), pictures.end());
+  for (const auto& f : pictures) r << "- ![" << fs::path(f).stem().string() << "](plots/" << f << ")\n";
   if (!r.flush()) throw Error(case_dir + "/report.md: cannot write");
 }
 

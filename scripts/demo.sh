@@ -11,12 +11,10 @@ echo "== rkprep: geometry/taylor_bar/scene.yaml -> $case_dir ($ranks ranks)"
   --set time.output_interval=2e-6
 echo "== rksolve on $ranks ranks"
 mpirun -np "$ranks" "$build/bin/rksolve" "$case_dir"
-echo "== rkpost"
+echo "== rkpost (VTK, plots, ParaView pictures off-screen, report)"
 "$build/bin/rkpost" "$case_dir"
 /usr/bin/python3 "$root/scripts/plot_taylor.py" "$case_dir"
-echo "== pictures (ParaView, off-screen)"
-"$root/scripts/pvbatch_offscreen.sh" "$root/scripts/pictures.py" "$case_dir" --frames 0,-1
-"$build/bin/rkpost" "$case_dir" --quiet  # again, so that report.md shows the plots and key results
+"$build/bin/rkpost" "$case_dir" --quiet --no-pictures  # again, so that report.md shows the Taylor results
 echo
 /usr/bin/python3 "$root/scripts/taylor_metrics.py" "$case_dir"
 echo

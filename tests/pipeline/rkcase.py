@@ -47,7 +47,8 @@ class Tools:
         return self.run(args, **kw)
 
     def post(self, case, **kw):
-        return self.run([self.bin / "rkpost", case, "--quiet"], **kw)
+        # no pictures: the suite checks them once (rkpost_paraview), not in every test
+        return self.run([self.bin / "rkpost", case, "--quiet", "--no-pictures"], **kw)
 
 
 def tools_from_argv():

@@ -89,8 +89,15 @@ for args, expected in ((["--fields", "strain"], "--fields: 'strain' is not a fie
     p = tools.run([tools.bin / "rkpost", case] + args, expect_ok=False)
     rkcase.check(p.returncode != 0 and expected in p.stderr, f"rkpost {' '.join(args)}: {p.stderr.strip()}")
 
-# pictures, off-screen
-tools.post(case)
+# rkpost makes the plots and pictures itself (ParaView off-screen), before its report lists them
+p = tools.run([tools.bin / "rkpost", case, "--quiet"])
+made = sorted(f.name for f in (case / "plots").glob("*.png"))
+# (the floor does not move: no force against stroke, no press section)
+rkcase.check(made == ["energies.png", "part_ep_00000.png", "part_ep_00002.png", "part_rank_00000.png", "part_rank_00002.png"]
+             and "![part_ep_00002](plots/part_ep_00002.png)" in (case / "report.md").read_text()
+             and "Press force" not in (case / "report.md").read_text(),
+             f"rkpost made the plots and pictures and report.md shows them: {made}")
+# the pictures at a chosen size
 p = tools.run([rkcase.ROOT / "scripts" / "pvbatch_offscreen.sh", rkcase.ROOT / "scripts" / "pictures.py", case,
                "--frames", "0,-1", "--size", "640x480"])
 for name in ("part_ep_00000", "part_ep_00002", "part_rank_00002"):

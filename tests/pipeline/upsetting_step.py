@@ -29,3 +29,11 @@ for f in res["force"]:
 rkcase.check(len(res["force"]) == 5, "reached 50 % reduction")
 rkcase.check(abs(res["diameter_error"]) < 0.02, f"diameter {res['diameter_mm']:.2f} mm ({100 * res['diameter_error']:+.2f} %)")
 rkcase.check(res["max_kinetic_internal_ratio"] < 0.01, f"quasi-static: KE/IE <= {100 * res['max_kinetic_internal_ratio']:.2f} %")
+
+# rkpost with its plots: the force against stroke, and the report's press section (the largest force
+# is the 50 % one, at the end of the stroke, 5 mm of the modeled half)
+p = tools.run([tools.bin / "rkpost", case, "--quiet"])
+report = (case / "report.md").read_text()
+rkcase.check((case / "plots" / "force_stroke.png").exists() and "## Press force" in report
+             and "![force against stroke](plots/force_stroke.png)" in report and "| die | " in report,
+             "report.md: the press section and the force-stroke plot")
