@@ -96,7 +96,7 @@ def seed_case(a, machine, sets=(), case=None):
     case = case or a.work / "taylor_seed_r1"
     p = prep(a, case, 1, sets=sets)
     s = solve(a, case, 1)
-    run([a.bin / "rkpost", case, "--quiet"])
+    run([a.bin / "rkpost", case, "--quiet", "--no-pictures"])
     m = json.loads(run([PY, ROOT / "scripts" / "taylor_metrics.py", case, "--json"], capture=True))
     cost = update_cost(s["neighbours_per_point"], s["plastic_fraction"])
     limit = machine_limit(machine, cost, s["integration_points"])
