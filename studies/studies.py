@@ -322,7 +322,7 @@ def measure(c, out, result):
                                          "ns_per_point_update", "energy_error", "peak_memory_mb_max_rank")})
     result["prep_s"] = json.loads((out / "prep.json").read_text()).get("wall_s")
     if (out / "results").exists():
-        run([BIN / "rkpost", out, "--quiet"], check=False)
+        run([BIN / "rkpost", out, "--quiet", "--no-pictures"], check=False)
     if (out / "vtk" / "case.pvd").exists():
         if c.scene.startswith("taylor_bar/"):
             m = taylor_metrics.metrics(out)
