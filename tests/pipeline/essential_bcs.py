@@ -128,8 +128,10 @@ eps = t_end * np.diag(G)
 sigma = lam * eps.sum() + 2 * mu * eps  # small strain (2e-4): finite-strain terms ~2e-4 relative
 von_mises, imposed = abs(sigma[0] - sigma[1]), speed * t_end
 # (the displacements are the material's, u^h(X_I), at every particle: re-measured 2026-12-01 when the
-# results changed from the coefficients d_I at the unconstrained particles to u^h(X_I))
-LEVEL = {("nodal", "scni"): (2.2041e-2, 1.6054e-1, 5.8365e-3), ("transformation", "scni"): (5.4515e-3, 2.8156e-2, None),
+# results changed from the coefficients d_I at the unconstrained particles to u^h(X_I); the SCNI stress
+# spreads re-measured 2026-12-02 when particle values became positive-weight averages: 1.6054e-1 ->
+# 1.5791e-1 and 2.8156e-2 -> 2.7773e-2, the Gauss rows moved by less than 0.1 %)
+LEVEL = {("nodal", "scni"): (2.2041e-2, 1.5791e-1, 5.8365e-3), ("transformation", "scni"): (5.4515e-3, 2.7773e-2, None),
          ("nodal", "gauss1"): (2.3312e-1, 1.0728e-1, 9.5040e-2), ("transformation", "gauss1"): (1.7061e-1, 4.6393e-2, None),
          ("nodal", "gauss2"): (1.8230e-2, 1.0811e-1, 3.4408e-3), ("transformation", "gauss2"): (2.8393e-3, 1.2337e-2, None),
          ("nodal", "gauss3"): (1.7233e-2, 1.0213e-1, 3.7048e-3), ("transformation", "gauss3"): (3.2549e-3, 1.3183e-2, None)}
