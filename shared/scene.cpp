@@ -54,7 +54,7 @@ class Section {
     seen_.insert(key);
     YAML::Node v = node_ ? node_[key] : YAML::Node();
     if ((!v || v.IsNull()) && required)
-      throw Error(where(file_, node_, path_) + ": missing key '" + key_path(key) + "'");
+      throw Error(where(file_, node_, path_) + ": missing key '" + key_path(key) + "'" + misspelt(key));
     return v;
   }
 
@@ -151,6 +151,33 @@ class Section {
       }
     }
     resolved_[key] = out;
+  }
+
+  // A key of this section that is close to `key` and not one the section knows (a misspelling of it),
+  // on a line of its own: "\n  FILE:LINE: unknown key 'a.b' (did you mean 'c'?)"; "" if none.
+  std::string misspelt(const std::string& key) const {
+    if (!node_ || !node_.IsMap()) return "";
+    auto distance = [](const std::string& a, const std::string& b) {  // Levenshtein
+      std::vector<std::size_t> row(b.size() + 1);
+      for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+      for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+          const std::size_t up = row[j];
+          row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+          diagonal = up;
+        }
+      }
+      return row[b.size()];
+    };
+    for (auto it = node_.begin(); it != node_.end(); ++it) {
+      const std::string k = it->first.as<std::string>();
+      if (k != key && !seen_.count(k) && distance(k, key) <= std::max<std::size_t>(2, key.size() / 4))
+        return "\n  " + where(file_, it->first, key_path(k)) + ": unknown key '" + key_path(k) + "' (did you mean '" +
+               key + "'?)";
+    }
+    return "";
   }
 
   void done() const {

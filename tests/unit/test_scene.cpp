@@ -76,6 +76,16 @@ TEST(Scene, MissingKey) {
   EXPECT_NE(e.find(".yaml:7"), std::string::npos) << e;  // the material section's line
 }
 
+TEST(Scene, MisspeltRequiredKeyIsNamedOnItsOwnLine) {
+  const auto e = error_of(replace(kGood, "  poisson_ratio: 0.35", "  poison_ratio: 0.35"));
+  EXPECT_TRUE(std::regex_search(e, std::regex(R"(missing key 'material\.poisson_ratio'\n  \S+\.yaml:10: unknown key )"
+                                              R"('material\.poison_ratio' \(did you mean 'poisson_ratio'\?\))")))
+      << e;
+  // a key far from any known one is not taken for a misspelling
+  const auto far = error_of(replace(kGood, "  poisson_ratio: 0.35", "  colour: red"));
+  EXPECT_EQ(far.find("did you mean"), std::string::npos) << far;
+}
+
 TEST(Scene, WrongType) {
   const auto e = error_of(replace(kGood, "117.0e9", "hard"));
   EXPECT_NE(e.find(".yaml:9: key 'material.youngs_modulus' must be a number"), std::string::npos) << e;
