@@ -31,7 +31,7 @@ std::string num(double x, int digits = 4) {
 
 std::string num(const nlohmann::json& j, int digits = 4) { return j.is_number() ? num(j.get<double>(), digits) : "-"; }
 
-// The unit of a history.csv column (the columns: docs/scene.md and README, "history.csv").
+// The unit of a history.csv column (the columns: docs/outputs.md, "The case folder").
 std::string unit_of(const std::string& column) {
   auto ends = [&](const char* tail) { return column.ends_with(tail); };
   if (column == "time" || column == "dt") return "s";
