@@ -213,6 +213,7 @@ double unit_length(const std::string& unit) {
 
 // --set key.path=value; a list entry is named by its index: dies[0].friction=0.2.
 void apply_override(YAML::Node root, const Override& o, const std::string& file) {
+  const std::string where = file + ": --set " + o.path;
   std::vector<std::string> keys;
   std::stringstream ss(o.path);
   for (std::string k; std::getline(ss, k, '.');) keys.push_back(k);
@@ -224,38 +225,29 @@ void apply_override(YAML::Node root, const Override& o, const std::string& file)
       char* end = nullptr;
       index = std::strtol(key.c_str() + open + 1, &end, 10);
       if (open == 0 || index < 0 || end == key.c_str() + open + 1 || std::string(end) != "]")
-        throw Error(file + ": --set " + o.path + ": '" + key + "' is not a key or a list entry like dies[0]");
+        throw Error(where + ": '" + key + "' is not a key or a list entry like dies[0]");
       key = key.substr(0, open);
-    }
-    const bool leaf = i + 1 == keys.size();
-    if (index >= 0) {
       const YAML::Node list = node[key];
       if (!list || !list.IsSequence() || std::size_t(index) >= list.size())
-        throw Error(file + ": --set " + o.path + ": the scene's '" + key + "' has " +
+        throw Error(where + ": the scene's '" + key + "' has " +
                     std::to_string(list && list.IsSequence() ? list.size() : 0) + " entries (from " + key + "[0])");
-      if (leaf) {
-        try {
-          node[key][std::size_t(index)] = YAML::Load(o.value);
-        } catch (const YAML::Exception&) {
-          throw Error(file + ": --set " + o.path + "=" + o.value + ": not a valid value");
-        }
-        return;
-      }
-      node.reset(node[key][std::size_t(index)]);
-      if (!node.IsMap()) throw Error(file + ": --set " + o.path + ": '" + keys[i] + "' is not a section");
-      continue;
     }
-    if (leaf) break;
-    YAML::Node next = node[key];
-    if (next && !next.IsNull() && !next.IsMap())
-      throw Error(file + ": --set " + o.path + ": '" + key + "' is not a section");
-    if (!next || next.IsNull()) node[key] = YAML::Node(YAML::NodeType::Map);
-    node.reset(node[key]);
-  }
-  try {
-    node[keys.back()] = YAML::Load(o.value);
-  } catch (const YAML::Exception& e) {
-    throw Error(file + ": --set " + o.path + "=" + o.value + ": not a valid value");
+    YAML::Node next = index >= 0 ? node[key][std::size_t(index)] : node[key];
+    if (i + 1 == keys.size()) {  // the value
+      try {
+        next = YAML::Load(o.value);  // (a yaml-cpp node assigns through to the deck)
+      } catch (const YAML::Exception&) {
+        throw Error(where + "=" + o.value + ": not a valid value");
+      }
+      return;
+    }
+    if (next && !next.IsNull() && !next.IsMap()) throw Error(where + ": '" + keys[i] + "' is not a section");
+    if (!next || next.IsNull()) {
+      if (index >= 0) throw Error(where + ": '" + keys[i] + "' is not a section");
+      node[key] = YAML::Node(YAML::NodeType::Map);
+      next = node[key];
+    }
+    node.reset(next);
   }
 }
 

@@ -167,9 +167,9 @@ void solve_case(const SolveOptions& opt, const Comm& comm) {
   double h_min = 1e300;  // the smallest particle spacing, the scale of the symmetry planes' health check
   for (std::size_t I = 0; I < md.n; ++I) h_min = std::min(h_min, md.spacing0[I]);
   comm.min(&h_min, 1);
-  // (mass scaling raises the impedance, and with it the pressure of a tool's start, by sqrt(factor))
   const double v_start = fastest_speed(scene, part_lo, part_hi);  // the fastest start or tool (m/s)
-  const PressureBound pressure_bound{impact_pressure(scene, part_lo, part_hi) * std::sqrt(md.mass_scaling),
+  // rho c_L v_max at the density the run uses: mass scaling raises a tool's starting pressure with it
+  const PressureBound pressure_bound{std::sqrt(md.density * md.wave_modulus) * v_start,
                                      scene.health.max_pressure_ratio};
   double volume0 = 0;  // sum of the points' reference volumes (each point lives on one rank)
   for (std::size_t g = 0; g < md.m; ++g) volume0 += md.weight[g];

@@ -53,7 +53,11 @@ void first_piola(const Model& md, State& st, std::size_t g, int n, double pc) {
 }
 
 // The pressure p (compression positive) of point g, or of its cell with F-bar, against the bound.
-void check_pressure(const Model& md, const PressureBound& b, double p, double ep, std::size_t g, StressHealth& h) {
+// floor: p_ref at ep = 0, its least (hardening is never negative: scene.cpp), so a pressure that
+// cannot raise the rank's largest ratio so far skips sigma_y(ep) (a pow for the power law).
+void check_pressure(const Model& md, const PressureBound& b, double floor, double p, double ep, std::size_t g,
+                    StressHealth& h) {
+  if (!(std::abs(p) > h.pressure_ratio * floor)) return;  // (and so not past the bound either)
   const double ref = b.impact + (md.material.plastic ? md.material.yield(ep) : 0.0);
   if (!(ref > 0)) return;  // an elastic part at rest and untouched: nothing to scale a bound with
   const double r = std::abs(p) / ref;
@@ -65,6 +69,7 @@ void check_pressure(const Model& md, const PressureBound& b, double p, double ep
 
 StressHealth update_stress(const Model& md, State& st, const PressureBound& bound) {
   StressHealth health;
+  const double floor = bound.impact + (md.material.plastic ? md.material.yield(0.0) : 0.0);
   J2Batch b;
   // F-bar couples the points of a cell; without it (volumetric: none, nodal integration) the points
   // go kLanes at a time whatever their cells
@@ -101,22 +106,18 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
         const double J = md.fbar ? 0.0 : st.total_J(p);
         if (!md.fbar && !(J > kMinVolumeRatio && J < 1 / kMinVolumeRatio) && health.ok) health = {false, p, J};
         if (!md.fbar)
-          check_pressure(md, bound, (st.q.empty() ? 0.0 : st.q[p]) - (t[0] + t[1] + t[2]) / (3 * J), st.ep[p], p, health);
+          check_pressure(md, bound, floor, (st.q.empty() ? 0.0 : st.q[p]) - (t[0] + t[1] + t[2]) / (3 * J), st.ep[p], p, health);
         ep_max = std::max(ep_max, st.ep[p]);
       }
     }
     if (md.fbar && !(wJ > kMinVolumeRatio * w && wJ < w / kMinVolumeRatio) && health.ok) health = {false, g0, wJ / w};
-    if (md.fbar && health.ok) check_pressure(md, bound, (st.q.empty() ? 0.0 : st.q[g0]) - wp / wJ, ep_max, g0, health);
+    if (md.fbar && health.ok) check_pressure(md, bound, floor, (st.q.empty() ? 0.0 : st.q[g0]) - wp / wJ, ep_max, g0, health);
     if (!health.ok) continue;
     const double pc = md.fbar ? wp / wJ : 0.0;
     for (auto g = g0; g < g1; g += kLanes) first_piola(md, st, g, int(std::min<std::size_t>(kLanes, g1 - g)), pc);
   }
   return health;
 }
-
-}  // namespace rk
-
-namespace rk {
 
 double fastest_speed(const Scene& scene, const double lo[3], const double hi[3]) {
   double v2 = 0;
@@ -138,13 +139,6 @@ double fastest_speed(const Scene& scene, const double lo[3], const double hi[3])
   for (const auto& d : scene.dies) fastest(d.motion);
   for (const auto& f : scene.prescribed_faces) fastest(f.motion);
   return v;
-}
-
-double impact_pressure(const Scene& scene, const double lo[3], const double hi[3]) {
-  const Material& mat = scene.material;
-  const double nu = mat.poisson_ratio;
-  const double wave_modulus = mat.youngs_modulus * (1 - nu) / ((1 + nu) * (1 - 2 * nu));  // K + 4G/3
-  return std::sqrt(mat.density * wave_modulus) * fastest_speed(scene, lo, hi);
 }
 
 }  // namespace rk

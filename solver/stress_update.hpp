@@ -39,8 +39,7 @@ struct StressHealth {
 StressHealth update_stress(const Model& md, State& st, const PressureBound& bound);
 
 // v_max: the largest of the initial speed over the part's box [lo, hi] and the speeds of the dies
-// and prescribed faces; rho0 c_L v_max (for PressureBound::impact).
+// and prescribed faces (PressureBound::impact is rho c_L v_max).
 double fastest_speed(const Scene& scene, const double lo[3], const double hi[3]);
-double impact_pressure(const Scene& scene, const double lo[3], const double hi[3]);
 
 }  // namespace rk
