@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "contact/contact_laws.hpp"
 #include "kinematics.hpp"
 
 namespace rk {
@@ -149,22 +150,18 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
       c = hit.found ? std::max(hit.gap, 0.0) : margin;
       if (!hit.found || hit.gap >= 0) continue;
       const double depth = -hit.gap, m = mass_[s];
-      const double kI = penalty_scale_ * m / (dt * dt);
+      const double kI = penalty_stiffness(penalty_scale_, m, dt);
       Active a{std::int32_t(s), std::int32_t(k), {}, {}};
-      double vt[3], vn = 0;
-      material_value(md, st.v, s, vt);
-      for (int i = 0; i < 3; ++i) {
-        a.normal_force[i] = kI * depth * hit.normal[i];
-        if (die) vt[i] -= rate * mo->direction[i];
-        vn += vt[i] * hit.normal[i];
-      }
-      for (int i = 0; i < 3; ++i) vt[i] -= vn * hit.normal[i];
-      const double fn = kI * depth, vt_norm = std::sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
-      if (mu > 0 && vt_norm > 0) {
-        const double stick = (s < particles_.size() ? 1.0 : 0.5) * m * vt_norm / dt;  // stops (half) the sliding in one step
-        const double f = std::min(stick, mu * fn);
-        for (int i = 0; i < 3; ++i) a.friction_force[i] = -f * vt[i] / vt_norm;
-      }
+      penalty_force(kI, depth, hit.normal, a.normal_force);
+      double v_rel[3], vt[3];  // the material's velocity relative to the obstacle
+      material_value(md, st.v, s, v_rel);
+      if (die)
+        for (int i = 0; i < 3; ++i) v_rel[i] -= rate * mo->direction[i];
+      const double vt_norm = tangential_velocity(v_rel, hit.normal, vt);
+      // the stick force stops the sliding in one step; a point's half of it: a particle and the points
+      // around it sample the same interface, and together they must not reverse it
+      const double stick = (s < particles_.size() ? 1.0 : 0.5) * m * vt_norm / dt;
+      coulomb_friction(mu, kI * depth, stick, vt, vt_norm, a.friction_force);
       for (int i = 0; i < 3; ++i) {
         tot.force[i] += a.normal_force[i] + a.friction_force[i];
         largest = std::max(largest, N_max_[s] * std::abs(a.normal_force[i] + a.friction_force[i]));
