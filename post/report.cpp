@@ -11,6 +11,9 @@
 #include <vector>
 
 #include "error.hpp"
+#include "history_columns.hpp"
+#include "phase_names.hpp"
+#include "run_summary.hpp"
 
 namespace rk {
 namespace {
@@ -30,27 +33,15 @@ std::string num(double x, int digits = 4) {
 }
 
 std::string num(const nlohmann::json& j, int digits = 4) { return j.is_number() ? num(j.get<double>(), digits) : "-"; }
-
-// The unit of a history.csv column (the columns: docs/outputs.md, "The case folder").
-std::string unit_of(const std::string& column) {
-  auto ends = [&](const char* tail) { return column.ends_with(tail); };
-  if (column == "time" || column == "dt") return "s";
-  if (column == "kinetic" || column == "internal" || column == "spring_energy" || ends("_work") || ends(".work"))
-    return "J";
-  if (ends(".force") || ends(".fx") || ends(".fy") || ends(".fz")) return "N";
-  if (ends(".stroke") || column == "max_penetration" || column == "symmetry_depth" || column == "ebc_error") return "m";
-  if (column == "contacts" || column == "point_contacts") return "count";
-  return "-";  // energy_error, kinetic_internal_ratio, volume_change: fractions
-}
-
 }  // namespace
 
 void write_report(const std::string& case_dir) {
   namespace fs = std::filesystem;
-  std::ifstream prep_file(case_dir + "/prep.json"), solve_file(case_dir + "/solve.json"), hist(case_dir + "/history.csv");
+  std::ifstream prep_file(case_dir + "/prep.json"), hist(case_dir + "/history.csv");
   const auto prep = nlohmann::json::parse(prep_file);
   // no solve.json: the run stopped on an error (a health check, a signal) or is still going
-  const nlohmann::json solve = solve_file ? nlohmann::json::parse(solve_file) : nlohmann::json::object();
+  const bool finished = fs::exists(case_dir + "/solve.json");
+  const RunSummary solve = finished ? read_run_summary(case_dir + "/solve.json") : RunSummary{};
   std::string header, line, last;
   std::getline(hist, header);
   const auto names = split(header);
@@ -84,35 +75,34 @@ void write_report(const std::string& case_dir) {
   r << "| particles / cells / integration points | " << prep["particles"] << " / " << prep["cells"] << " / "
     << prep["integration_points"] << " |\n";
   r << "| ranks | " << prep["ranks"] << " (imbalance " << num(prep["partition"]["imbalance"], 3) << ") |\n";
-  if (solve.contains("warnings"))
-    for (const auto& w : solve["warnings"]) r << "| **warning** | " << w.get<std::string>() << " |\n";
-  if (solve.empty()) {
+  for (const auto& w : solve.warnings) r << "| **warning** | " << w << " |\n";
+  if (!finished) {
     r << "| run | **not finished**: no solve.json (rksolve stopped with an error, its message says why, or is "
          "still running); history.csv ends at t = "
       << (values.empty() ? "-" : num(std::stod(values[0]))) << " s |\n";
   } else {
-    r << "| simulated time | " << num(solve["time"]) << " s in " << solve["steps"] << " steps |\n";
-    r << "| wall time | " << num(solve["wall_s"], 3) << " s (setup " << num(solve["setup_s"], 3) << " s, prep "
+    r << "| simulated time | " << num(solve.time) << " s in " << solve.steps << " steps |\n";
+    r << "| wall time | " << num(solve.wall_s, 3) << " s (setup " << num(solve.setup_s, 3) << " s, prep "
       << num(prep["wall_s"], 3) << " s) |\n";
-    r << "| cost | " << num(solve["ns_per_point_update"], 3) << " ns per integration-point update |\n";
+    r << "| cost | " << num(solve.ns_per_point_update, 3) << " ns per integration-point update |\n";
     // the run's largest energy error decides the verdict (an error that peaked and fell back is not good)
-    const double err = solve.value("max_energy_error", solve["energy_error"].get<double>());
+    const double err = solve.max_energy_error;
     r << "| energy balance | largest error " << num(100 * err, 3) << " % of the energy scale (at the end "
-      << num(100 * solve["energy_error"].get<double>(), 3) << " %): "
+      << num(100 * solve.energy_error, 3) << " %): "
       << (err <= 0.01 ? "**good** (<= 1 %)" : err <= 0.05 ? "**acceptable** (<= 5 %)" : "**poor** (> 5 %)") << " |\n";
-    if (solve.contains("max_pressure_ratio"))
-      r << "| largest pressure | " << num(solve["max_pressure_ratio"], 3) << " x (rho0 c_L v_max + sigma_y), "
-        << "rho0 c_L v_max = " << num(solve.value("impact_pressure_pa", 0.0) / 1e9, 3)
-        << " GPa (the run stops past health.max_pressure_ratio) |\n";
-    if (solve.value("mass_scaling", 1.0) > 1)
-      r << "| quasi-static | mass scaling " << num(solve["mass_scaling"], 3) << ", max kinetic/internal "
-        << num(100 * solve.value("max_kinetic_internal_ratio", 0.0), 3) << " % |\n";
-    r << "\n## Wall time per phase (max over ranks)\n\n| phase | s |\n|---|---|\n";
-    for (const auto& [name, t] : solve["phases"].items()) r << "| " << name << " | " << num(t["max_s"], 3) << " |\n";
+    r << "| largest pressure | " << num(solve.max_pressure_ratio, 3) << " x (rho0 c_L v_max + sigma_y), "
+      << "rho0 c_L v_max = " << num(solve.impact_pressure_pa / 1e9, 3)
+      << " GPa (the run stops past health.max_pressure_ratio) |\n";
+    if (solve.mass_scaling > 1)
+      r << "| quasi-static | mass scaling " << num(solve.mass_scaling, 3) << ", max kinetic/internal "
+        << num(100 * solve.max_kinetic_internal_ratio, 3) << " % |\n";
+    r << "\n## Wall time per phase (max over ranks, in the step's order)\n\n| phase | s |\n|---|---|\n";
+    for (const char* name : kPhaseNames)
+      if (solve.phases.count(name)) r << "| " << name << " | " << num(solve.phases.at(name).max_s, 3) << " |\n";
   }
-  r << "\n## " << (solve.empty() ? "Last" : "Final") << " values (history.csv)\n\n| quantity | value | unit |\n|---|---|---|\n";
+  r << "\n## " << (!finished ? "Last" : "Final") << " values (history.csv)\n\n| quantity | value | unit |\n|---|---|---|\n";
   for (std::size_t k = 0; k < names.size() && k < values.size(); ++k)
-    r << "| " << names[k] << " | " << num(std::stod(values[k])) << " | " << unit_of(names[k]) << " |\n";
+    r << "| " << names[k] << " | " << num(std::stod(values[k])) << " | " << history_unit(names[k]) << " |\n";
   std::ifstream results_file(case_dir + "/plots/results.json");  // written by the scene's scripts
   if (results_file) {
     const auto results = nlohmann::json::parse(results_file, nullptr, false);

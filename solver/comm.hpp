@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "error.hpp"
+
 namespace rk {
 
 class Comm {
@@ -27,5 +29,20 @@ class Comm {
  private:
   int rank_ = 0, size_ = 1;
 };
+
+// Runs `fn` on every rank; an rk::Error on any rank becomes the same error on all ranks (for a step
+// that can fail on one rank, e.g. a write to a full disk, between collective calls).
+template <class Fn>
+auto collectively(const Comm& comm, Fn fn) {
+  std::string message;
+  decltype(fn()) result{};
+  try {
+    result = fn();
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  comm.check(message.empty(), message);
+  return result;
+}
 
 }  // namespace rk

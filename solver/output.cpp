@@ -134,33 +134,4 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
   ++frames_;
 }
 
-HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::string>& columns, double resume_time) {
-  std::vector<std::string> keep;
-  if (resume_time >= 0) {  // rows before the checkpoint survive a restart
-    std::ifstream in(path);
-    std::string line, header;
-    for (std::size_t k = 0; k < columns.size(); ++k) header += (k ? "," : "") + columns[k];
-    if (std::getline(in, line) && line != header)  // rows of another layout would land under the wrong names
-      throw Error(path + ": written with other columns (\"" + line.substr(0, 80) +
-                  "...\"); move it away to restart into a new history");
-    while (std::getline(in, line))
-      if (std::strtod(line.c_str(), nullptr) < resume_time) keep.push_back(line);
-  }
-  file_ = std::fopen(path.c_str(), "w");
-  if (!file_) throw Error(path + ": cannot write the history file");
-  for (std::size_t k = 0; k < columns.size(); ++k) std::fprintf(file_, "%s%s", k ? "," : "", columns[k].c_str());
-  std::fprintf(file_, "\n");
-  for (const auto& line : keep) std::fprintf(file_, "%s\n", line.c_str());
-}
-
-HistoryWriter::~HistoryWriter() {
-  if (file_) std::fclose(file_);
-}
-
-void HistoryWriter::write(const std::vector<double>& values) {
-  for (std::size_t k = 0; k < values.size(); ++k) std::fprintf(file_, "%s%.10g", k ? "," : "", values[k]);
-  std::fprintf(file_, "\n");
-  if (std::fflush(file_) != 0 || std::ferror(file_)) throw Error("history.csv: write failed (disk full?)");
-}
-
 }  // namespace rk

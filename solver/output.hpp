@@ -1,5 +1,5 @@
-// Output: per-rank result frames of the OWNED particles (CASE/results/rank_NNNN.h5), the history
-// (CASE/history.csv, rank 0) and particle values of point quantities. Only called at output steps.
+// Output: per-rank result frames of the OWNED particles, with particle values of point quantities.
+// Only called at output steps.
 #pragma once
 #include <cstdio>
 #include <string>
@@ -34,15 +34,5 @@ class ResultWriter {
   int headroom_ = -1;  // of the projection sums (force_headroom), set at the first frame
 };
 
-class HistoryWriter {  // rank 0 only: one header row, then one row of numbers per call
- public:
-  // resume_time >= 0: keep the existing rows before that time (restart), else start a new file.
-  HistoryWriter(const std::string& path, const std::vector<std::string>& columns, double resume_time = -1);
-  ~HistoryWriter();
-  void write(const std::vector<double>& values);
-
- private:
-  std::FILE* file_ = nullptr;
-};
 
 }  // namespace rk

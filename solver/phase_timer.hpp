@@ -1,18 +1,16 @@
-// Wall time per named phase of the step (the names solve.json and the log use).
+// Wall time per phase of the step (shared/phase_names.hpp: the names solve.json uses).
 #pragma once
 #include <array>
 #include <chrono>
 
-namespace rk {
+#include "phase_names.hpp"
 
-enum Phase { kDeformation, kStress, kTimeStep, kInternalForce, kExchange, kUpdate, kOutput, kReference, kPhaseCount };
-inline constexpr std::array<const char*, kPhaseCount> kPhaseNames = {
-    "deformation_gradient", "stress_update", "time_step", "internal_force", "overlap_exchange", "update", "output", "reference_update"};
+namespace rk {
 
 class PhaseTimer {
  public:
   void start() { t0_ = std::chrono::steady_clock::now(); }
-  void stop(Phase p) {
+  void stop(Phase p) {  // the time since the last start or stop is p's
     const auto t1 = std::chrono::steady_clock::now();
     seconds[p] += std::chrono::duration<double>(t1 - t0_).count();
     t0_ = t1;

@@ -1,0 +1,37 @@
+#include "history_columns.hpp"
+
+namespace rk {
+namespace {
+
+constexpr const char* kWallColumns[] = {".force"};
+constexpr const char* kDieColumns[] = {".stroke", ".force", ".fx", ".fy", ".fz", ".work"};
+constexpr const char* kFixedFaceColumns[] = {".fx", ".fy", ".fz"};
+constexpr const char* kPrescribedFaceColumns[] = {".stroke", ".fx", ".fy", ".fz"};
+
+}  // namespace
+
+std::vector<std::string> history_columns(const Scene& scene) {
+  std::vector<std::string> c;
+  for (const auto& s : kHistoryScalars) c.push_back(s.name);
+  for (const auto& w : scene.rigid_walls)
+    for (const char* q : kWallColumns) c.push_back(w.name + q);
+  for (const auto& d : scene.dies)
+    for (const char* q : kDieColumns) c.push_back(d.name + q);
+  for (const auto& f : scene.fixed_faces)
+    for (const char* q : kFixedFaceColumns) c.push_back(f.name + q);
+  for (const auto& f : scene.prescribed_faces)
+    for (const char* q : kPrescribedFaceColumns) c.push_back(f.name + q);
+  return c;
+}
+
+std::string history_unit(const std::string& column) {
+  for (const auto& s : kHistoryScalars)
+    if (column == s.name) return s.unit;
+  auto ends = [&](const char* tail) { return column.ends_with(tail); };
+  if (ends(".work")) return "J";
+  if (ends(".force") || ends(".fx") || ends(".fy") || ends(".fz")) return "N";
+  if (ends(".stroke")) return "m";
+  return "-";
+}
+
+}  // namespace rk

@@ -1,0 +1,35 @@
+// CASE/history.csv, the contract between rksolve (the writer) and rkpost and the scripts (readers):
+// a header row of column names, then one row of numbers (%.10g) per history time, SI units, for the
+// modeled part. The columns are named: readers find a column by its name, never by its position.
+// First the run's scalars (kHistoryScalars), then per rigid wall its force along its normal, per die
+// its stroke, press force (along its motion, times force_factor), force components and press work,
+// per fixed face its reaction components, per prescribed face its stroke and reaction components.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "scene.hpp"
+
+namespace rk {
+
+struct HistoryColumn {
+  const char* name;
+  const char* unit;  // "s", "J", "N", "m", "count" or "-" (a fraction)
+};
+
+inline constexpr HistoryColumn kHistoryScalars[] = {
+    {"time", "s"},            {"dt", "s"},                  {"kinetic", "J"},
+    {"internal", "J"},        {"plastic_work", "J"},        {"external_work", "J"},
+    {"contact_work", "J"},    {"energy_error", "-"},        {"friction_work", "J"},
+    {"contacts", "count"},    {"point_contacts", "count"},  {"max_penetration", "m"},
+    {"kinetic_internal_ratio", "-"}, {"volume_change", "-"}, {"ebc_error", "m"},
+    {"update_work", "J"},     {"spring_energy", "J"},       {"symmetry_depth", "m"},
+    {"viscous_work", "J"}};
+
+// The scene's columns in order: the scalars, then its walls', dies' and faces' columns.
+std::vector<std::string> history_columns(const Scene& scene);
+
+// The unit of a column of any scene ("-" for a fraction or an unknown name).
+std::string history_unit(const std::string& column);
+
+}  // namespace rk
