@@ -1,37 +1,20 @@
-// Contact of the workpiece with the moving rigid dies (seed 4.3), its fixed rigid walls and its
-// symmetry planes: one treatment for every rigid obstacle. The slaves are material points, each with
-// its row of shape functions:
-// - every owned particle at X_I + u^h(X_I) (not at its coefficient X_I + d_I), not only those on
-//   the initial surface: in forging the material folds and interior particles reach the dies;
+// Contact of the workpiece with the moving rigid dies (seed Sec. 4.3), its fixed rigid walls and its
+// symmetry planes: one treatment for every rigid obstacle, on the material, not on the coefficients.
+// The slaves are material points, each with its row of shape functions:
+// - every owned particle at X_I + u^h(X_I), not only those on the initial surface;
 // - every integration point of this rank at X_g + u^h(X_g) (with nodal integration the points are
-//   the particles' material points, and the particles are not slaves again);
-// a slave's contact force f acts on the field there, spread as N_J f onto the coefficients d_J.
-// RK shape functions do not interpolate: a die that held the coefficients let the field between and
-// at them reach into it (0.3-0.6 mm into back extrusion's punch corner with only the particles'
-// coefficients held; 2-20 um at the particles with the points held too), and each reference
-// update, which moves the material to the field, had to cut that layer off at the die surface:
-// back extrusion's cup lost 12 mm^3 per update (its wall ended at 88 % of its height). Held at the
-// field, the material is where the dies let it be, and an update leaves it there.
-// Rigid walls are frictionless fixed planes for the same slaves (a wall that held the coefficients
-// kinematically let the field at the impact face's rim reach through it, and the same Taylor bar read
-// a footprint 3 % apart from the one held on a flat die).
-// Symmetry planes are frictionless fixed planes for the same slaves, except the particles (and nodal
-// points) lying on the plane, which the EBCs hold both ways (a one-sided hold on them biased the
-// material away from the plane: the quarter Taylor bar 1.3 % wider). The nodal EBCs hold the
-// coefficients of the particles on a plane, not the field, and a die that presses the field near
-// a plane pushed it across (back extrusion's punch corner: integration points 4.8 mm past y = 0 at
-// 12 mm of stroke, then a singular moment matrix).
-// Normal: penalty k = penalty_scale * m / dt^2 on the penetration depth, m the particle's mass or the
-// point's rho w_g (tied to the stable step, so contact never shrinks it: spread over a row, it
-// stiffens the coefficients by sum_J N_J^2 k / m_J, with sum_J N_J^2 at most 0.85 and 0.14-0.25 on
-// average, measured on back extrusion and wheel forging). Tangential: Coulomb friction, stick when
-// the force that stops the relative tangential velocity in one step is within mu |f_n|, slip with
-// mu |f_n| against the sliding direction otherwise. A point's stick force stops half its sliding: a
-// particle and the points around it sample the same interface, and together they must not reverse
-// it. A slave is looked up only when its distance to the die at its last lookup, less how far it
-// and the die have moved since, may have run out (the same contacts as a lookup of every slave at
-// every step). Computed by each particle's and each point's OWNER only; the forces enter the
-// fixed-point partial sums, so shared copies receive them exactly once.
+//   the particles' material points, and the particles are not slaves again).
+// A slave's contact force f acts on the field there, spread as N_J f onto the coefficients d_J.
+// Rigid walls and symmetry planes are frictionless fixed planes for the same slaves, except that the
+// particles (and nodal points) lying on a symmetry plane are left to the essential BCs, which hold
+// them there both ways; a symmetry plane's normal points to the side of the rank's particles.
+// The pointwise laws are in contact/contact_laws.hpp: penalty k = s m / dt^2 (m the particle's mass or
+// the point's rho w_g, dt the last stable step, so contact never shortens it) and Coulomb friction
+// with a stick force that stops the sliding in one step; a point's stick force stops half of it.
+// A slave is looked up only when its clearance at its last lookup, less how far it and the die may
+// have moved since, may have run out. Computed by each particle's and each point's OWNER only; the
+// forces enter the fixed-point partial sums, so shared copies receive them exactly once.
+// Why each choice, with what was measured: docs/decisions.md, "Contact".
 #pragma once
 #include <memory>
 #include <vector>
