@@ -13,6 +13,7 @@
 #include "h5file.hpp"
 #include "pictures.hpp"
 #include "report.hpp"
+#include "result_frame.hpp"
 #include "scene.hpp"
 #include "subdomain.hpp"
 #include "vtu_writer.hpp"
@@ -21,13 +22,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The particle fields of a result frame (solver/output.cpp), written as ParaView point data.
-struct Field {
-  const char* name;
-  int components;
-};
-constexpr Field kFields[] = {{"displacement", 3}, {"velocity", 3},  {"eq_plastic_strain", 1},
-                             {"von_mises", 1},    {"pressure", 1},  {"stress", 6}};  // stress: Cauchy, xx yy zz xy yz zx
+// The particle fields of a result frame (shared/result_frame.hpp), written as ParaView point data.
+using Field = rk::FrameField;
+constexpr const auto& kFields = rk::kFrameFields;
 
 struct Frame {
   double time = 0;
@@ -36,14 +33,8 @@ struct Frame {
   std::vector<std::vector<double>> values;  // per selected field
 };
 
-// CASE/results/rank_NNNN/frame_FFFFF.h5 (one file per rank and frame, written whole or not at all)
-std::string frame_file(const std::string& case_dir, int rank, int frame) {
-  char name[64];
-  std::snprintf(name, sizeof name, "/results/rank_%04d/frame_%05d.h5", rank, frame);
-  return case_dir + name;
-}
-
-// A frame of another case (another scene's subdomains): never merged, never skipped quietly.
+// A frame of another case (another scene's subdomains) or of another format: never merged, never
+// skipped quietly.
 struct ForeignFrame : rk::Error {
   using rk::Error::Error;
 };
@@ -52,13 +43,15 @@ Frame read_frame(const std::string& case_dir, int ranks, int f, const std::vecto
                  const std::string& scene_hash) {
   Frame fr;
   fr.values.resize(fields.size());
-  char group[32];
-  std::snprintf(group, sizeof group, "frames/%05d/", f);
-  const std::string g(group);
+  const std::string g = rk::result_frame_group(f);
   for (int r = 0; r < ranks; ++r) {
-    const std::string path = frame_file(case_dir, r, f);
+    const std::string path = rk::result_frame_path(case_dir, r, f);
     if (!fs::exists(path)) throw rk::Error(path + ": missing (the rank did not write this frame)");
     const rk::H5File h(path, rk::H5File::Mode::read);
+    const std::int64_t format = h.has_attr("format") ? h.attr_int("format") : 0;
+    if (format != rk::kResultFrameFormat)
+      throw ForeignFrame(path + ": written by another version of rksolve (frame format " + std::to_string(format) +
+                         ", this rkpost reads " + std::to_string(rk::kResultFrameFormat) + "); re-run rksolve on the case");
     const std::string hash = h.has_attr("scene_hash") ? h.attr_string("scene_hash") : "none";
     if (hash != scene_hash)
       throw ForeignFrame(path + ": computed on another scene's subdomains (scene hash " + hash + ", this case's " +
@@ -207,14 +200,10 @@ int run(int argc, char** argv) {
   // no results at all: a case prepared and not solved yet, shown as it starts (frame 0 from the subdomains)
   const bool solved = fs::exists(case_dir + "/results");
   for (int r = 0; r < ranks && solved; ++r) {
-    const std::string dir = fs::path(frame_file(case_dir, r, 0)).parent_path().string();
+    const std::string dir = rk::result_frame_dir(case_dir, r);
     if (!fs::is_directory(dir)) throw rk::Error(dir + ": not found (has rksolve run on this case?)");
-    for (const auto& entry : fs::directory_iterator(dir)) {
-      long long k = -1;
-      const std::string file = entry.path().filename().string();
-      if (std::sscanf(file.c_str(), "frame_%lld.h5", &k) == 1 && !file.ends_with(".tmp"))
-        frames = std::max<std::int64_t>(frames, k + 1);
-    }
+    for (const auto& entry : fs::directory_iterator(dir))
+      frames = std::max<std::int64_t>(frames, rk::result_frame_number(entry.path().filename().string()) + 1);
   }
   fs::create_directories(case_dir + "/vtk");
   // the dies, placed at their stroke at each frame's time (a part of their own in the .pvd)

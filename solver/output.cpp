@@ -12,6 +12,7 @@
 #include "h5file.hpp"
 #include "internal_force.hpp"
 #include "kinematics.hpp"
+#include "result_frame.hpp"
 
 namespace rk {
 namespace {
@@ -30,25 +31,16 @@ void cauchy_measures(const double* tau, double J, double& von_mises, double& pre
 
 }  // namespace
 
-static std::string frame_path(const std::string& dir, std::int64_t frame) {
-  char name[32];
-  std::snprintf(name, sizeof name, "/frame_%05lld.h5", static_cast<long long>(frame));
-  return dir + name;
-}
-
 ResultWriter::ResultWriter(const std::string& case_dir, const Model& md, const std::string& scene_hash,
                            std::int64_t resume_frames)
-    : scene_hash_(scene_hash), exchange_(md, kProjected), partial_(kProjected * md.n) {
-  char name[32];
-  std::snprintf(name, sizeof name, "/results/rank_%04d", md.rank);
-  dir_ = case_dir + name;
-  std::filesystem::create_directories(dir_);
+    : case_dir_(case_dir), scene_hash_(scene_hash), exchange_(md, kProjected), partial_(kProjected * md.n) {
+  const std::string dir = result_frame_dir(case_dir, md.rank);
+  std::filesystem::create_directories(dir);
   frames_ = int(std::max<std::int64_t>(resume_frames, 0));
-  for (const auto& entry : std::filesystem::directory_iterator(dir_)) {  // frames after the restart point
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {  // frames after the restart point
     const std::string file = entry.path().filename().string();
-    long long k = -1;
-    if (std::sscanf(file.c_str(), "frame_%lld.h5", &k) == 1 && (k >= frames_ || file.ends_with(".tmp")))
-      std::filesystem::remove(entry.path());
+    const long long k = result_frame_number(file);
+    if (k >= frames_ || (file.starts_with("frame_") && file.ends_with(".tmp"))) std::filesystem::remove(entry.path());
   }
 }
 
@@ -105,25 +97,22 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     pr.push_back(value(3));
     for (int c = 4; c < kProjected; ++c) sigma.push_back(value(c));
   }
-  const std::string path = frame_path(dir_, frames_), tmp = path + ".tmp";
+  const std::string path = result_frame_path(case_dir_, md.rank, frames_), tmp = path + ".tmp";
   try {
     H5File f(tmp, H5File::Mode::create);
+    f.set_attr("format", kResultFrameFormat);
     f.set_attr("rank", std::int64_t(md.rank));
     f.set_attr("ranks", std::int64_t(md.ranks));
     f.set_attr("scene_hash", scene_hash_);
-    char group[32];
-    std::snprintf(group, sizeof group, "frames/%05d/", frames_);
-    const std::string g(group);
+    const std::string g = result_frame_group(frames_);
     f.write(g + "time", std::vector<double>{st.t});
     f.write(g + "step", std::vector<std::int64_t>{st.step});
     f.write(g + "global_id", gid);
     f.write(g + "x", x, 3);
-    f.write(g + "displacement", u, 3);
-    f.write(g + "velocity", v, 3);
-    f.write(g + "eq_plastic_strain", ep);
-    f.write(g + "von_mises", vm);
-    f.write(g + "pressure", pr);
-    f.write(g + "stress", sigma, 6);
+    const std::vector<double>* fields[] = {&u, &v, &ep, &vm, &pr, &sigma};  // in kFrameFields' order
+    static_assert(std::size(fields) == std::size(kFrameFields));
+    for (std::size_t k = 0; k < std::size(fields); ++k)
+      f.write(g + kFrameFields[k].name, *fields[k], std::size_t(kFrameFields[k].components));
     f.close();
   } catch (const Error&) {  // no partial frame is left behind
     std::error_code ignored;

@@ -13,11 +13,10 @@
 
 namespace rk {
 
-// Frame layout: frames/NNNNN/{time, step, global_id, x, displacement, velocity, eq_plastic_strain,
-// von_mises, pressure}; root attribute `frames` = number of complete frames.
+// The frame's files and layout: shared/result_frame.hpp.
 class ResultWriter {
  public:
-  // One file per frame, CASE/results/rank_NNNN/frame_FFFFF.h5, each written whole or not at all
+  // One file per frame, each written whole or not at all
   // (durable_file). resume_frames < 0: a new run (old frames are removed); otherwise keep the first
   // resume_frames frames (a restart drops the frames written after its checkpoint). Each frame carries
   // the scene hash of the subdomains it was computed on (rkpost merges only its own case's frames).
@@ -27,7 +26,7 @@ class ResultWriter {
   int frames() const { return frames_; }
 
  private:
-  std::string dir_, scene_hash_;
+  std::string case_dir_, scene_hash_;
   int frames_ = 0;
   OverlapExchange exchange_;
   std::vector<Fixed> partial_;

@@ -44,3 +44,27 @@ errors = [ln for ln in p.stderr.splitlines() if "rkpost: error" in ln]
 rkcase.check(p.returncode != 0 and len(errors) == 1 and "computed on another scene's subdomains" in errors[0]
              and "re-run rksolve" in errors[0] and not (other / "vtk" / "case.pvd").exists(),
              f"another case's frames are refused: {errors[0] if errors else p.stderr.strip()}")
+
+# Results of another version of rksolve (the contracts of shared/result_frame.hpp and
+# shared/run_summary.hpp carry a format): a frame or a solve.json of another format is refused with
+# its file named, never read under the wrong layout.
+import json  # noqa: E402
+
+import h5py  # noqa: E402
+
+with h5py.File(case / "results" / "rank_0001" / "frame_00001.h5", "r+") as f:
+    f.attrs["format"] = 0
+p = tools.post(case, expect_ok=False)
+errors = [ln for ln in p.stderr.splitlines() if "rkpost: error" in ln]
+rkcase.check(p.returncode != 0 and len(errors) == 1 and "rank_0001/frame_00001.h5" in errors[0]
+             and "frame format 0, this rkpost reads 1" in errors[0],
+             f"a frame of another format is refused: {errors[0] if errors else p.stderr.strip()}")
+with h5py.File(case / "results" / "rank_0001" / "frame_00001.h5", "r+") as f:
+    f.attrs["format"] = 1
+solve = json.loads((case / "solve.json").read_text())
+solve["format"] = 7
+(case / "solve.json").write_text(json.dumps(solve))
+p = tools.post(case, expect_ok=False)
+errors = [ln for ln in p.stderr.splitlines() if "rkpost: error" in ln]
+rkcase.check(p.returncode != 0 and len(errors) == 1 and "solve.json" in errors[0] and "format 7" in errors[0],
+             f"a solve.json of another format is refused: {errors[0] if errors else p.stderr.strip()}")
