@@ -103,14 +103,14 @@ struct Scene {
     double penalty_scale = 0.25;  // k_I = scale * m_I / dt^2 (< 1: contact never limits the step)
   } contact;
 
-  // Reference-configuration updates (solver/reference_update.hpp): when the Green strain of any
+  // Reference-configuration updates (solver/rk/reference_update.hpp): when the Green strain of any
   // integration point since the last update exceeds `strain` (norm of E), the shape functions are
   // rebuilt on the current configuration. 0: total Lagrangian throughout.
   struct ReferenceUpdates {
     double strain = 0;
   } reference_updates;
 
-  // Bulk viscosity (solver/bulk_viscosity.hpp): in compression the pressure q = rho l |e| (quadratic
+  // Bulk viscosity (solver/material/bulk_viscosity.hpp): in compression the pressure q = rho l |e| (quadratic
   // l |e| + linear c), e = tr D. Defaults 1.5 and 0.06 (LS-DYNA's), 0 with mass scaling; both 0: off,
   // at no cost.
   struct BulkViscosity {

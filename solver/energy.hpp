@@ -3,7 +3,7 @@
 #pragma once
 #include <vector>
 
-#include "comm.hpp"
+#include "parallel/comm.hpp"
 #include "model.hpp"
 #include "state.hpp"
 

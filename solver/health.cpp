@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "kinematics.hpp"
+#include "rk/kinematics.hpp"
 
 namespace rk {
 

@@ -1,20 +1,20 @@
 // Health checks: a state that is not physical, or a run that can never end, stops every rank at the
 // step it is found, after a last frame on every rank, with one message that says where and what to
 // change. After the step's reduction: a collapsed stable step, material past a symmetry plane, a
-// volume ratio or pressure past its bound (stress_update.hpp), non-finite forces. At a history row:
+// volume ratio or pressure past its bound (material/stress_update.hpp), non-finite forces. At a history row:
 // a particle outside the box of the part and the dies, an energy error past its bound (with the
 // place of an unstable mode, when there is one).
 #pragma once
 #include <functional>
 #include <string>
 
-#include "comm.hpp"
+#include "parallel/comm.hpp"
 #include "contact/die_contact.hpp"
 #include "model.hpp"
 #include "scene.hpp"
 #include "state.hpp"
 #include "step_limits.hpp"
-#include "stress_update.hpp"
+#include "material/stress_update.hpp"
 #include "time_step.hpp"
 
 namespace rk {

@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "cli.hpp"
-#include "comm.hpp"
+#include "parallel/comm.hpp"
 #include "solver.hpp"
 
 int main(int argc, char** argv) {

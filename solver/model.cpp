@@ -8,7 +8,7 @@
 
 #include "boundary/constraints.hpp"
 #include "error.hpp"
-#include "local_shapes.hpp"
+#include "rk/local_shapes.hpp"
 
 namespace rk {
 namespace {

@@ -20,7 +20,7 @@ struct Model {
   std::vector<std::int64_t> global_id;
   std::vector<double> X, mass, volume, spacing;  // X: initial position (t = 0)
   // Xr: the reference positions the shape functions are built on; X until a reference update
-  // (reference_update.hpp), then the particles' positions X + u at the last update
+  // (rk/reference_update.hpp), then the particles' positions X + u at the last update
   std::vector<double> Xr;
   std::vector<double> spacing0;  // h_I at t = 0 (spacing: on the reference configuration)
   std::vector<std::uint8_t> owned, surface;

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "comm.hpp"
+#include "parallel/comm.hpp"
 #include "scene.hpp"
 
 namespace rk {

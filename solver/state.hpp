@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "fixed_point.hpp"
+#include "parallel/fixed_point.hpp"
 #include "model.hpp"
 
 namespace rk {
@@ -30,11 +30,11 @@ struct State {
   std::vector<double> wp;      // accumulated plastic work density (J/m^3, reference volume)
   std::vector<double> force_bound;  // per point: w |P| max|grad N|, bounds its force contributions
   std::vector<double> cell_J;  // cell-averaged det F (F-bar)
-  // bulk viscosity (bulk_viscosity.hpp), empty when off: q, the stable step's factor, and the det F
+  // bulk viscosity (material/bulk_viscosity.hpp), empty when off: q, the stable step's factor, and the det F
   // (from t = 0; the cell's with F-bar) at the last step
   std::vector<double> q, dt_factor, J_last;
 
-  // reference updates (reference_update.hpp); empty until the first: the particles' displacements
+  // reference updates (rk/reference_update.hpp); empty until the first: the particles' displacements
   // at the last update (F is gathered from d - d^ref) and each point's det F up to it
   std::vector<double> u_ref, J_ref;
   std::int64_t reference_updates = 0;

@@ -2,7 +2,7 @@
 // stable step and the force bound limit the step; the rest are flags and measures that decide what
 // the next steps do (a checkpoint, a reference update, a stop).
 #pragma once
-#include "comm.hpp"
+#include "parallel/comm.hpp"
 
 namespace rk {
 

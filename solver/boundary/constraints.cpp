@@ -6,7 +6,7 @@
 
 #include "error.hpp"
 #include "model.hpp"
-#include "local_shapes.hpp"
+#include "rk/local_shapes.hpp"
 
 namespace rk {
 namespace {

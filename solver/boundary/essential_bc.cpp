@@ -5,7 +5,7 @@
 
 #include "boundary/constraints.hpp"
 #include "error.hpp"
-#include "kinematics.hpp"
+#include "rk/kinematics.hpp"
 
 namespace rk {
 namespace {

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "boundary/constraint_factor.hpp"
-#include "comm.hpp"
+#include "parallel/comm.hpp"
 #include "model.hpp"
 #include "scene.hpp"
 #include "state.hpp"

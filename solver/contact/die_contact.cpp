@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "contact/contact_laws.hpp"
-#include "kinematics.hpp"
+#include "rk/kinematics.hpp"
 
 namespace rk {
 

@@ -1,4 +1,4 @@
-"""Reference-configuration updates (solver/reference_update.hpp) on the Taylor bar, with the wall a
+"""Reference-configuration updates (solver/rk/reference_update.hpp) on the Taylor bar, with the wall a
 contact that lets the rim lift (geometry/taylor_bar/scene_contact.yaml), where the bounds below were
 measured (with the benchmark's wall, which holds the impact face, the updates read r_f -1.5 % and
 L_f +1.1 % but take 1.18x the total-Lagrangian steps: docs/validation.md):

@@ -7,7 +7,7 @@
 
 #include "cad_mesh.hpp"
 #include "discretize.hpp"
-#include "local_shapes.hpp"
+#include "rk/local_shapes.hpp"
 #include "model.hpp"
 #include "partition.hpp"
 #include "scene.hpp"

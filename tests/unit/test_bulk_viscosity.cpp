@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "bulk_viscosity.hpp"
+#include "material/bulk_viscosity.hpp"
 #include "time_step.hpp"
 
 namespace {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "stress_update.hpp"
+#include "material/stress_update.hpp"
 
 namespace {
 

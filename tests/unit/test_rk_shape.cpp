@@ -106,7 +106,7 @@ double spread_at(const Cloud& c, const double x[3]) {
   return rk::neighbour_spread(x, nb, parts, rk::Kernel::cubic_bspline);
 }
 
-// The placement measure the reference updates grow supports by (solver/reference_update.cpp, kPoor
+// The placement measure the reference updates grow supports by (solver/rk/reference_update.cpp, kPoor
 // 0.03) must stay well above it at every point of a fresh lattice, the faces, edges and corners
 // included (a fresh prep never needs growing), and fall to zero where the particles around a point
 // are flat (below).

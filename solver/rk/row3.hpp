@@ -9,7 +9,7 @@ namespace rk {
 using Row3 = double __attribute__((vector_size(32)));
 using FixedRow3 = long long __attribute__((vector_size(32)));
 inline Row3 make_row3(double a, double b, double c) { return Row3{a, b, c, 0.0}; }
-inline FixedRow3 truncate_row(Row3 r) { return __builtin_convertvector(r, FixedRow3); }  // fixed_point.hpp
+inline FixedRow3 truncate_row(Row3 r) { return __builtin_convertvector(r, FixedRow3); }  // parallel/fixed_point.hpp
 #else
 struct Row3 {
   double v[3];

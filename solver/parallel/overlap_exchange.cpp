@@ -1,4 +1,4 @@
-#include "overlap_exchange.hpp"
+#include "parallel/overlap_exchange.hpp"
 
 namespace rk {
 

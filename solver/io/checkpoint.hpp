@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "comm.hpp"
+#include "parallel/comm.hpp"
 #include "contact/die_contact.hpp"
 #include "model.hpp"
 #include "state.hpp"

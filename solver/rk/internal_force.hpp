@@ -1,18 +1,18 @@
 // Scatter: f^int_I = sum_g w_g P_g grad_X N_I(X_g) (seed eq. (19)) from this rank's own points,
-// accumulated in fixed point (fixed_point.hpp) so the result is independent of summation order.
+// accumulated in fixed point (parallel/fixed_point.hpp) so the result is independent of summation order.
 // The points are added in two groups so that the boundary points' partials can travel while the
 // interior points are computed.
 #pragma once
 #include <span>
 
-#include "comm.hpp"
-#include "fixed_point.hpp"
+#include "parallel/comm.hpp"
+#include "parallel/fixed_point.hpp"
 #include "model.hpp"
 #include "state.hpp"
 
 namespace rk {
 
-// The fixed-point headroom (fixed_point.hpp) of sums over this model's points and neighbours: the
+// The fixed-point headroom (parallel/fixed_point.hpp) of sums over this model's points and neighbours: the
 // most contributions any particle receives from the points of ALL ranks, `per_column` from each of
 // its columns (1 + the dies: a point's contact force is spread over its columns too), plus `extra`
 // (the particle's own die contacts), so it does not depend on the partition. Collective; set-up

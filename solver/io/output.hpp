@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "comm.hpp"
+#include "parallel/comm.hpp"
 #include "energy.hpp"
 #include "model.hpp"
-#include "overlap_exchange.hpp"
+#include "parallel/overlap_exchange.hpp"
 #include "state.hpp"
 
 namespace rk {

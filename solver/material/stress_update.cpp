@@ -1,4 +1,4 @@
-#include "stress_update.hpp"
+#include "material/stress_update.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -35,7 +35,7 @@ void first_piola(const Model& md, State& st, std::size_t g, int n, double pc) {
     const std::size_t p = g + std::min(l, n - 1);
     const double* t = &st.tau[6 * p];
     double shift = md.fbar ? st.total_J(p) * pc - (t[0] + t[1] + t[2]) / 3 : 0.0;
-    if (!st.q.empty()) shift -= st.total_J(p) * st.q[p];  // the bulk viscosity's pressure (bulk_viscosity.hpp)
+    if (!st.q.empty()) shift -= st.total_J(p) * st.q[p];  // the bulk viscosity's pressure (material/bulk_viscosity.hpp)
     for (int i = 0; i < 6; ++i) te.v[i][l] = t[i] + (i < 3 ? shift : 0.0);
   }
   const Lane inv_det = 1 / cofactor(F, cof);

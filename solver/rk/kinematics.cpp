@@ -1,6 +1,6 @@
-#include "kinematics.hpp"
+#include "rk/kinematics.hpp"
 
-#include "row3.hpp"
+#include "rk/row3.hpp"
 
 namespace rk {
 namespace {

@@ -1,4 +1,4 @@
-#include "local_shapes.hpp"
+#include "rk/local_shapes.hpp"
 
 namespace rk {
 namespace {

@@ -1,4 +1,4 @@
-#include "comm.hpp"
+#include "parallel/comm.hpp"
 
 #include <vector>
 

@@ -1,10 +1,10 @@
-#include "checkpoint.hpp"
+#include "io/checkpoint.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
-#include "durable_file.hpp"
+#include "io/durable_file.hpp"
 #include "error.hpp"
 #include "h5file.hpp"
 
@@ -46,7 +46,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
       f.write("points/q", st.q);
       f.write("points/J_last", st.J_last);
     }
-    if (st.reference_updates > 0) {  // the reference configuration (reference_update.hpp)
+    if (st.reference_updates > 0) {  // the reference configuration (rk/reference_update.hpp)
       f.write("particles/u_ref", st.u_ref, 3);
       f.write("points/X", md.point_X, 3);
       f.write("points/J_ref", st.J_ref);

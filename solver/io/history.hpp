@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "boundary/essential_bc.hpp"
-#include "comm.hpp"
+#include "parallel/comm.hpp"
 #include "contact/die_contact.hpp"
 #include "energy.hpp"
 #include "model.hpp"

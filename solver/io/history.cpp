@@ -1,4 +1,4 @@
-#include "history.hpp"
+#include "io/history.hpp"
 
 #include <algorithm>
 #include <cstdlib>

@@ -1,5 +1,5 @@
 // Gather: F_g = I + sum_I d_I (x) grad_X N_I(X_g) at every integration point (total Lagrangian),
-// and the F-bar cell average of det F. After a reference update (reference_update.hpp) the same
+// and the F-bar cell average of det F. After a reference update (rk/reference_update.hpp) the same
 // gather on the displacement since the update, d_I - d_I^ref, with the shapes of the new reference.
 #pragma once
 #include "model.hpp"

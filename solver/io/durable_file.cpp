@@ -1,4 +1,4 @@
-#include "durable_file.hpp"
+#include "io/durable_file.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>

@@ -1,9 +1,9 @@
-#include "internal_force.hpp"
+#include "rk/internal_force.hpp"
 
 #include <algorithm>
 
-#include "overlap_exchange.hpp"
-#include "row3.hpp"
+#include "parallel/overlap_exchange.hpp"
+#include "rk/row3.hpp"
 
 namespace rk {
 

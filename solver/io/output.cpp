@@ -1,4 +1,4 @@
-#include "output.hpp"
+#include "io/output.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -7,11 +7,11 @@
 #include <filesystem>
 #include <fstream>
 
-#include "durable_file.hpp"
+#include "io/durable_file.hpp"
 #include "error.hpp"
 #include "h5file.hpp"
-#include "internal_force.hpp"
-#include "kinematics.hpp"
+#include "rk/internal_force.hpp"
+#include "rk/kinematics.hpp"
 #include "result_frame.hpp"
 
 namespace rk {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "comm.hpp"
+#include "parallel/comm.hpp"
 #include "state.hpp"
 
 namespace rk {

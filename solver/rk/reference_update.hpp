@@ -16,7 +16,7 @@
 #pragma once
 #include <functional>
 
-#include "comm.hpp"
+#include "parallel/comm.hpp"
 #include "model.hpp"
 #include "scene.hpp"
 #include "state.hpp"

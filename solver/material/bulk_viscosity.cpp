@@ -1,4 +1,4 @@
-#include "bulk_viscosity.hpp"
+#include "material/bulk_viscosity.hpp"
 
 #include <cmath>
 

@@ -1,13 +1,13 @@
-#include "reference_update.hpp"
+#include "rk/reference_update.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "error.hpp"
-#include "kinematics.hpp"
+#include "rk/kinematics.hpp"
 #include "local_particles.hpp"
-#include "local_shapes.hpp"
+#include "rk/local_shapes.hpp"
 #include "neighbour_grid.hpp"
 
 namespace rk {
