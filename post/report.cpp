@@ -45,6 +45,12 @@ void write_report(const std::string& case_dir) {
   std::string header, line, last;
   std::getline(hist, header);
   const auto names = split(header);
+  // the columns' names are the history's format (shared/history_columns.hpp): the scalars lead
+  for (std::size_t k = 0; k < std::size(kHistoryScalars); ++k)
+    if (k >= names.size() || names[k] != kHistoryScalars[k].name)
+      throw Error(case_dir + "/history.csv: written by another version of rksolve (column " + std::to_string(k + 1) +
+                  " is '" + (k < names.size() ? names[k] : std::string()) + "', this rkpost reads '" +
+                  kHistoryScalars[k].name + "'); re-run rksolve on the case");
   // each moving die (a `.stroke` and a `.force` column): its largest press force and the stroke there
   struct Press {
     std::string die;

@@ -3,8 +3,8 @@
 #pragma once
 #include <vector>
 
-#include "parallel/comm.hpp"
 #include "model.hpp"
+#include "parallel/comm.hpp"
 #include "state.hpp"
 
 namespace rk {

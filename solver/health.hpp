@@ -8,13 +8,13 @@
 #include <functional>
 #include <string>
 
-#include "parallel/comm.hpp"
 #include "contact/die_contact.hpp"
+#include "material/stress_update.hpp"
 #include "model.hpp"
+#include "parallel/comm.hpp"
 #include "scene.hpp"
 #include "state.hpp"
 #include "step_limits.hpp"
-#include "material/stress_update.hpp"
 #include "time_step.hpp"
 
 namespace rk {

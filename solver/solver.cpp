@@ -10,26 +10,27 @@
 #include <sstream>
 
 #include "boundary/essential_bc.hpp"
-#include "material/bulk_viscosity.hpp"
-#include "io/checkpoint.hpp"
 #include "contact/die_contact.hpp"
 #include "energy.hpp"
 #include "error.hpp"
 #include "health.hpp"
+#include "io/checkpoint.hpp"
 #include "io/history.hpp"
-#include "rk/internal_force.hpp"
-#include "rk/kinematics.hpp"
-#include "model.hpp"
 #include "io/output.hpp"
+#include "io/progress.hpp"
+#include "io/run_report.hpp"
+#include "material/bulk_viscosity.hpp"
+#include "material/stress_update.hpp"
+#include "model.hpp"
 #include "parallel/overlap_exchange.hpp"
 #include "phase_timer.hpp"
 #include "process_memory.hpp"
-#include "io/progress.hpp"
+#include "rk/internal_force.hpp"
+#include "rk/kinematics.hpp"
 #include "rk/reference_update.hpp"
 #include "run_summary.hpp"
 #include "state.hpp"
 #include "step_limits.hpp"
-#include "material/stress_update.hpp"
 #include "subdomain.hpp"
 #include "time_step.hpp"
 
@@ -57,6 +58,7 @@ class Simulation {
   void stress_update();
   void contact();
   void time_step();
+  void check_health() const;
   double step_size(bool last);
   void internal_force();
   void velocity_update(double dt_avg);
@@ -116,10 +118,10 @@ void Simulation::run() {
     stress_update();                            // bulk viscosity, J2 return map with F-bar, P = tau F^-T
     contact();                                  // the dies', walls' and symmetry planes' forces
     time_step();                                // the step's one reduction over ranks
-    health_->after_reduction(md_, st_, *dies_, limits_, stable_, stress_, healthy_, comm_, last_frame_);
+    check_health();                             // a state that is not physical stops every rank here
     const double dt = step_size(last);
     const double dt_avg = st_.step == 0 ? 0.5 * dt : 0.5 * (st_.dt_half + dt);
-    internal_force();                           // f = sum_g w_g P_g grad_X N_I + contact, overlap summed
+    internal_force();                           // f = sum_g w_g P_g grad_X N_I - f_contact, overlap summed
     velocity_update(dt_avg);                    // v^{n+1/2} = v^{n-1/2} + dt_avg (g - f / m)
     constraints(dt, dt_avg);                    // the essential BCs at t^{n+1}
     boundary_work(dt_avg);                      // the contact's and the body force's work over the step
@@ -204,6 +206,10 @@ void Simulation::time_step() {
   checkpoint_due_ = limits_.checkpoint_clock || stop_requested_;
   update_due_ = update_strain > 0 && limits_.strain_since_update > update_strain;
   timer_.stop(kTimeStep);
+}
+
+void Simulation::check_health() const {
+  health_->after_reduction(md_, st_, *dies_, limits_, stable_, stress_, healthy_, comm_, last_frame_);
 }
 
 // The stable step, shortened to land on the end and on the next output time.
@@ -390,69 +396,15 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   std::signal(SIGTERM, request_stop);
 }
 
-// solve.json: totals and per-phase times (min/max over ranks)
+// solve.json (io/run_report.hpp) and the closing line
 void Simulation::finish() {
-  const double wall = comm_.wtime() - wall0_;
-  double counts[6] = {0, double(md_.m), double(md_.nbr.size()), plastic_updates_, point_updates_, st_.viscous_work};
-  for (std::size_t I = 0; I < md_.n; ++I) counts[0] += md_.owned[I];
-  comm_.sum(counts, 6);
-  std::array<double, kPhaseCount> lo = timer_.seconds, hi = timer_.seconds;
-  comm_.min(lo.data(), kPhaseCount);
-  comm_.max(hi.data(), kPhaseCount);
-  // memory: the largest rank's peak, and per integration point (with its share of the particles,
-  // neighbours and shape functions) the data above the program's own baseline, summed over ranks:
-  // at the peak (setup temporaries included) and resident at the end (what the time loop holds)
-  const double peak_mb = process_memory_mb("VmHWM:");
-  double mem_max = peak_mb, mem_sum[2] = {peak_mb - baseline_mb_, process_memory_mb("VmRSS:") - baseline_mb_};
-  comm_.max(&mem_max, 1);
-  comm_.sum(mem_sum, 2);
-  const double bytes_per_mb_point = 1048576.0 / std::max(counts[1], 1.0);
-  // Suspicious but legal: a die that never touched the part (another unit, a wrong place, a motion
-  // away from the part) leaves a run with no forming in it. Its work over the run (checkpointed) is 0.
-  std::vector<double> touched(dies_->size());
-  for (std::size_t d = 0; d < dies_->size(); ++d) {
-    const DieTotals& t = dies_->totals()[d];
-    touched[d] = std::abs(t.press_work) + std::abs(t.contact_work) + std::abs(t.friction_work);
-  }
-  comm_.sum(touched.data(), int(touched.size()));
-  RunSummary s;
-  for (std::size_t d = 0; d < dies_->size(); ++d)
-    if (touched[d] == 0)
-      s.warnings.push_back("die '" + scene_.dies[d].name + "' never touched the part in this run: check its CAD unit (dies[" +
-                           std::to_string(d) + "].unit), its position and its motion's direction");
-  if (comm_.rank() != 0) return;
-  for (const auto& w : s.warnings) std::fprintf(stderr, "rksolve: warning: %s\n", w.c_str());
-  for (int p = 0; p < kPhaseCount; ++p) s.phases[kPhaseNames[p]] = {lo[p], hi[p]};
-  const double loop_s = wall - setup_s_;
-  s.steps = st_.step;
-  s.time = st_.t;
-  s.wall_s = wall;
-  s.setup_s = setup_s_;
-  s.ranks = comm_.size();
-  s.particles = std::int64_t(counts[0]);
-  s.integration_points = std::int64_t(counts[1]);
-  s.neighbours_per_point = counts[2] / std::max(counts[1], 1.0);
-  s.point_updates_per_s = loop_s > 0 ? counts[1] * double(st_.step) / loop_s : 0.0;
-  s.ns_per_point_update = st_.step > 0 ? 1e9 * loop_s * comm_.size() / (counts[1] * double(st_.step)) : 0.0;
-  s.plastic_fraction = counts[3] / std::max(counts[4], 1.0);
-  s.energy_error = clock_.last_error;
-  s.max_energy_error = clock_.max_error;
-  s.max_pressure_ratio = clock_.max_pressure_ratio;
-  s.impact_pressure_pa = pressure_bound_.impact;
-  s.ebc_method = scene_.discretization.ebc_method;
-  s.constraints = ebc_->constraints();
-  s.max_ebc_error_m = max_ebc_error_;
-  s.initial_kinetic_energy = clock_.kinetic0;
-  s.viscous_work = counts[5];
-  s.mass_scaling = md_.mass_scaling;
-  s.max_kinetic_internal_ratio = clock_.max_ke_ratio;
-  s.reference_updates = st_.reference_updates;
-  s.frames = results_->frames();
-  s.peak_memory_mb_max_rank = mem_max;
-  s.peak_bytes_per_point = mem_sum[0] * bytes_per_mb_point;
-  s.resident_bytes_per_point = mem_sum[1] * bytes_per_mb_point;
-  write_run_summary(opt_.case_dir + "/solve.json", s);
-  progress_->done(st_.step, wall, s.ns_per_point_update, clock_.last_error);
+  RunCounts counts;
+  counts.wall0 = wall0_, counts.setup_s = setup_s_, counts.baseline_mb = baseline_mb_;
+  counts.plastic_updates = plastic_updates_, counts.point_updates = point_updates_;
+  counts.max_ebc_error = max_ebc_error_, counts.impact_pressure = pressure_bound_.impact;
+  counts.frames = results_->frames();
+  const RunSummary s = write_run_report(opt_.case_dir, scene_, md_, st_, clock_, *dies_, *ebc_, timer_, counts, comm_);
+  progress_->done(st_.step, s.wall_s, s.ns_per_point_update, clock_.last_error);
 }
 
 }  // namespace

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "parallel/fixed_point.hpp"
 #include "model.hpp"
+#include "parallel/fixed_point.hpp"
 
 namespace rk {
 

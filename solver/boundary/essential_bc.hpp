@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "boundary/constraint_factor.hpp"
-#include "parallel/comm.hpp"
 #include "model.hpp"
+#include "parallel/comm.hpp"
 #include "scene.hpp"
 #include "state.hpp"
 

@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "io/durable_file.hpp"
 #include "error.hpp"
 #include "h5file.hpp"
+#include "io/durable_file.hpp"
 
 namespace rk {
 

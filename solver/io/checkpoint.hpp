@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "parallel/comm.hpp"
 #include "contact/die_contact.hpp"
 #include "model.hpp"
+#include "parallel/comm.hpp"
 #include "state.hpp"
 
 namespace rk {

@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "boundary/essential_bc.hpp"
-#include "parallel/comm.hpp"
 #include "contact/die_contact.hpp"
 #include "energy.hpp"
 #include "model.hpp"
+#include "parallel/comm.hpp"
 #include "scene.hpp"
 #include "state.hpp"
 

@@ -7,12 +7,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "io/durable_file.hpp"
 #include "error.hpp"
 #include "h5file.hpp"
+#include "io/durable_file.hpp"
+#include "result_frame.hpp"
 #include "rk/internal_force.hpp"
 #include "rk/kinematics.hpp"
-#include "result_frame.hpp"
 
 namespace rk {
 namespace {

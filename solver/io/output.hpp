@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "parallel/comm.hpp"
 #include "energy.hpp"
 #include "model.hpp"
+#include "parallel/comm.hpp"
 #include "parallel/overlap_exchange.hpp"
 #include "state.hpp"
 

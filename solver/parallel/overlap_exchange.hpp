@@ -7,8 +7,8 @@
 
 #include <vector>
 
-#include "parallel/fixed_point.hpp"
 #include "model.hpp"
+#include "parallel/fixed_point.hpp"
 
 namespace rk {
 

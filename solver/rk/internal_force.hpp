@@ -5,9 +5,9 @@
 #pragma once
 #include <span>
 
+#include "model.hpp"
 #include "parallel/comm.hpp"
 #include "parallel/fixed_point.hpp"
-#include "model.hpp"
 #include "state.hpp"
 
 namespace rk {

@@ -5,10 +5,10 @@
 #include <string>
 
 #include "error.hpp"
-#include "rk/kinematics.hpp"
 #include "local_particles.hpp"
-#include "rk/local_shapes.hpp"
 #include "neighbour_grid.hpp"
+#include "rk/kinematics.hpp"
+#include "rk/local_shapes.hpp"
 
 namespace rk {
 namespace {

@@ -16,8 +16,8 @@
 #pragma once
 #include <functional>
 
-#include "parallel/comm.hpp"
 #include "model.hpp"
+#include "parallel/comm.hpp"
 #include "scene.hpp"
 #include "state.hpp"
 

@@ -68,3 +68,11 @@ p = tools.post(case, expect_ok=False)
 errors = [ln for ln in p.stderr.splitlines() if "rkpost: error" in ln]
 rkcase.check(p.returncode != 0 and len(errors) == 1 and "solve.json" in errors[0] and "format 7" in errors[0],
              f"a solve.json of another format is refused: {errors[0] if errors else p.stderr.strip()}")
+solve["format"] = 1
+(case / "solve.json").write_text(json.dumps(solve))
+history = (case / "history.csv").read_text().splitlines()
+(case / "history.csv").write_text("\n".join([history[0].replace("kinetic,internal", "internal,kinetic")] + history[1:]))
+p = tools.post(case, expect_ok=False)
+errors = [ln for ln in p.stderr.splitlines() if "rkpost: error" in ln]
+rkcase.check(p.returncode != 0 and len(errors) == 1 and "history.csv" in errors[0] and "column 3 is 'internal'" in errors[0],
+             f"a history.csv of other columns is refused: {errors[0] if errors else p.stderr.strip()}")

@@ -1,0 +1,80 @@
+#include "io/run_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "process_memory.hpp"
+
+namespace rk {
+
+RunSummary write_run_report(const std::string& case_dir, const Scene& scene, const Model& md, const State& st,
+                            const RunClock& clock, const DieContact& dies, const EssentialBcs& ebc,
+                            const PhaseTimer& timer, const RunCounts& counts, const Comm& comm) {
+  const double wall = comm.wtime() - counts.wall0;
+  double owned = 0;
+  for (std::size_t I = 0; I < md.n; ++I) owned += md.owned[I];
+  double sums[6] = {owned, double(md.m), double(md.nbr.size()), counts.plastic_updates, counts.point_updates,
+                    st.viscous_work};
+  comm.sum(sums, 6);
+  const double particles = sums[0], points = sums[1], neighbours = sums[2], plastic = sums[3], updates = sums[4];
+  std::array<double, kPhaseCount> lo = timer.seconds, hi = timer.seconds;
+  comm.min(lo.data(), kPhaseCount);
+  comm.max(hi.data(), kPhaseCount);
+  // memory: the largest rank's peak, and per integration point (with its share of the particles,
+  // neighbours and shape functions) the data above the program's own baseline, summed over ranks:
+  // at the peak (setup temporaries included) and resident at the end (what the time loop holds)
+  const double peak_mb = process_memory_mb("VmHWM:");
+  double mem_max = peak_mb, mem_sum[2] = {peak_mb - counts.baseline_mb, process_memory_mb("VmRSS:") - counts.baseline_mb};
+  comm.max(&mem_max, 1);
+  comm.sum(mem_sum, 2);
+  const double bytes_per_mb_point = 1048576.0 / std::max(points, 1.0);
+  // Suspicious but legal: a die that never touched the part (another unit, a wrong place, a motion
+  // away from the part) leaves a run with no forming in it. Its work over the run (checkpointed) is 0.
+  std::vector<double> touched(dies.size());
+  for (std::size_t d = 0; d < dies.size(); ++d) {
+    const DieTotals& t = dies.totals()[d];
+    touched[d] = std::abs(t.press_work) + std::abs(t.contact_work) + std::abs(t.friction_work);
+  }
+  comm.sum(touched.data(), int(touched.size()));
+  RunSummary s;
+  for (std::size_t d = 0; d < dies.size(); ++d)
+    if (touched[d] == 0)
+      s.warnings.push_back("die '" + scene.dies[d].name + "' never touched the part in this run: check its CAD unit (dies[" +
+                           std::to_string(d) + "].unit), its position and its motion's direction");
+  if (comm.rank() != 0) return s;
+  for (const auto& w : s.warnings) std::fprintf(stderr, "rksolve: warning: %s\n", w.c_str());
+  for (int p = 0; p < kPhaseCount; ++p) s.phases[kPhaseNames[p]] = {lo[p], hi[p]};
+  const double loop_s = wall - counts.setup_s;
+  s.steps = st.step;
+  s.time = st.t;
+  s.wall_s = wall;
+  s.setup_s = counts.setup_s;
+  s.ranks = comm.size();
+  s.particles = std::int64_t(particles);
+  s.integration_points = std::int64_t(points);
+  s.neighbours_per_point = neighbours / std::max(points, 1.0);
+  s.point_updates_per_s = loop_s > 0 ? points * double(st.step) / loop_s : 0.0;
+  s.ns_per_point_update = st.step > 0 ? 1e9 * loop_s * comm.size() / (points * double(st.step)) : 0.0;
+  s.plastic_fraction = plastic / std::max(updates, 1.0);
+  s.energy_error = clock.last_error;
+  s.max_energy_error = clock.max_error;
+  s.max_pressure_ratio = clock.max_pressure_ratio;
+  s.impact_pressure_pa = counts.impact_pressure;
+  s.ebc_method = scene.discretization.ebc_method;
+  s.constraints = ebc.constraints();
+  s.max_ebc_error_m = counts.max_ebc_error;
+  s.initial_kinetic_energy = clock.kinetic0;
+  s.viscous_work = sums[5];
+  s.mass_scaling = md.mass_scaling;
+  s.max_kinetic_internal_ratio = clock.max_ke_ratio;
+  s.reference_updates = st.reference_updates;
+  s.frames = counts.frames;
+  s.peak_memory_mb_max_rank = mem_max;
+  s.peak_bytes_per_point = mem_sum[0] * bytes_per_mb_point;
+  s.resident_bytes_per_point = mem_sum[1] * bytes_per_mb_point;
+  write_run_summary(case_dir + "/solve.json", s);
+  return s;
+}
+
+}  // namespace rk
