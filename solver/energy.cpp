@@ -6,9 +6,9 @@
 namespace rk {
 
 Energies compute_energies(const Model& md, const State& st, const std::vector<double>& v_old, const Comm& comm) {
-  Energies e;  // this rank's shares: its owned particles' kinetic energy, its points' internal energy
-  e.internal = st.viscous_work;  // the bulk viscosity's work is dissipated
-  e.external = st.external_work;
+  // this rank's shares, summed in one reduction: kinetic (its owned particles), internal (its points'
+  // stored and plastic work, with the bulk viscosity's dissipated work), plastic work, external work
+  double e[4] = {0, st.viscous_work, 0, st.external_work};
   for (std::size_t I = 0; I < md.n; ++I) {
     if (!md.owned[I]) continue;
     double v2 = 0;
@@ -16,16 +16,16 @@ Energies compute_energies(const Model& md, const State& st, const std::vector<do
       const double vb = 0.5 * (v_old[3 * I + i] + st.v[3 * I + i]);
       v2 += vb * vb;
     }
-    e.kinetic += 0.5 * md.mass[I] * v2;
+    e[0] += 0.5 * md.mass[I] * v2;
   }
   for (std::size_t g = 0; g < md.m; ++g) {
-    e.internal += md.weight[g] * (st.psi[g] + st.wp[g]);
-    e.plastic += md.weight[g] * st.wp[g];
+    e[1] += md.weight[g] * (st.psi[g] + st.wp[g]);
+    e[2] += md.weight[g] * st.wp[g];
   }
-  double sums[4] = {e.kinetic, e.internal, e.plastic, e.external};  // one reduction
-  comm.sum(sums, 4);
-  e.kinetic = sums[0], e.internal = sums[1], e.plastic = sums[2], e.external = sums[3];
-  return e;
+  comm.sum(e, 4);
+  Energies out;
+  out.kinetic = e[0], out.internal = e[1], out.plastic = e[2], out.external = e[3];
+  return out;
 }
 
 double energy_error(const Energies& e, double kinetic0) {
