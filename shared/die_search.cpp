@@ -74,7 +74,8 @@ DieSearch::DieSearch(const DieSurface& s, double margin) : s_(s) {
     start_.assign(2, 0);
     return;
   }
-  // Bin size: the mean edge or the margin, whichever is larger, with at most ~2^21 bins.
+  // Bin size: the mean edge or the margin, whichever is larger, with at most ~2^21 bins (8 MiB of bin
+  // offsets), grown 1.25x until they fit.
   h_ = std::max(edges / double(nt), margin);
   for (;;) {
     for (int d = 0; d < 3; ++d) dims_[d] = std::max<std::int64_t>(1, std::int64_t((hi[d] - lo_[d]) / h_) + 1);
@@ -113,6 +114,7 @@ DieHit DieSearch::nearest(const double x[3]) const {
   double best = std::numeric_limits<double>::infinity(), best_point[3] = {0, 0, 0};
   const double reach = margin_ * margin_;  // nothing beyond the margin counts
   double pseudo[3] = {0, 0, 0};
+  // Squared distances within 1e-12 relative (1e-18 m^2 absolute) are equal to round-off: one point.
   for (std::int32_t k = start_[b]; k < start_[b + 1]; ++k) {
     const std::int32_t t = items_[k];
     double box2 = 0;  // squared distance to the triangle's box: a lower bound, cheap to reject with

@@ -2,7 +2,8 @@
 // own frame: the dies only translate, so the bucket grid is built once and never refreshed. Each
 // triangle is listed in every bin its box (grown by the search margin) touches, so a query reads one
 // bin however large the die's triangles are.
-// Used by rkprep (a workpiece must not start inside a die) and rksolve (particle-to-segment contact).
+// Used by rkprep (a workpiece must not start inside a die) and rksolve (the contact of the material
+// points, particles and integration points, with the die's triangles).
 #pragma once
 #include <cstdint>
 #include <vector>

@@ -5,8 +5,8 @@
 namespace rk {
 
 std::vector<std::int32_t> local_particles(const LocalParticleRequest& r) {
-  // one mark per particle: linear in the points (collecting every support and sorting them was
-  // O(k n log n) with k ~ 37 columns per point, and held 4k bytes per point: 2.4 GB at 1M particles)
+  // one mark per particle: linear in the points (docs/decisions.md, "Local particles by one mark per
+  // particle")
   std::vector<std::uint8_t> mark(r.grid.size(), 0);
   std::vector<std::int32_t> found;
   for (auto I : r.cell_nodes) mark[I] = 1;

@@ -2,8 +2,7 @@
 // configuration) and rksolve's reference updates (the current one): the nodes of its integration
 // cells, every particle whose support covers one of its integration points, and the whole support
 // of every particle it owns (u^h(X_I): the essential-BC rows, the output, the reference updates'
-// new positions). Particles are
-// numbered by global id, so every rank count finds the same sets.
+// new positions). Particles are numbered by global id, so every rank count finds the same sets.
 #pragma once
 #include <cstdint>
 #include <vector>

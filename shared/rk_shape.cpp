@@ -65,7 +65,8 @@ RkResult shape(const double x[3], std::span<const std::int32_t> nb, const RkPart
   }
   Eigen::LDLT<Mat> ldlt(M);
   RkResult result;
-  // Pivot ratio of the scaled moment matrix: LDLT's own rcond() ignores zero pivots.
+  // Pivot ratio of the scaled moment matrix: LDLT's own rcond() ignores zero pivots. Below 1e-10 the
+  // solve would keep fewer than 6 of its 16 digits: singular.
   const Vec D = ldlt.vectorD().cwiseAbs();
   result.rcond = D.maxCoeff() > 0 ? D.minCoeff() / D.maxCoeff() : 0.0;
   if (ldlt.info() != Eigen::Success || !(result.rcond > 1e-10)) return result;

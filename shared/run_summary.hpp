@@ -30,14 +30,14 @@ struct RunSummary {
   double max_pressure_ratio = 0;    // the largest |p| / (rho0 c_L v_max + sigma_y)
   double impact_pressure_pa = 0;    // rho0 c_L v_max
   std::string ebc_method;
-  std::int64_t constraints = 0;     // rows of the exact essential BCs
+  std::int64_t constraints = 0;     // constrained directions of the essential BCs, over all ranks
   double max_ebc_error_m = 0;
   double initial_kinetic_energy = 0, viscous_work = 0;  // J
   double mass_scaling = 1;
   double max_kinetic_internal_ratio = 0;  // past 5 % of the run: a quasi-static run keeps it small
   std::int64_t reference_updates = 0, frames = 0;
   double peak_memory_mb_max_rank = 0, peak_bytes_per_point = 0, resident_bytes_per_point = 0;
-  std::map<std::string, PhaseTime> phases;  // by the phase names of the step (solver/phase_timer.hpp)
+  std::map<std::string, PhaseTime> phases;  // by the phase names of the step (shared/phase_names.hpp)
   std::vector<std::string> warnings;        // suspicious but legal, also printed by rksolve
 };
 

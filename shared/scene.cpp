@@ -112,6 +112,7 @@ class Section {
     }
     if (unit) {
       double n = norm(x);
+      // (1e-12: zero up to round-off)
       if (!(n > 1e-12))
         throw Error(where(file_, v ? v : node_, key_path(key)) + ": key '" + key_path(key) +
                     "' must be a non-zero direction");
@@ -448,7 +449,8 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     die.friction = d.number("friction", 0.0, {0, 10});
     die.motion = read_motion(d, name);
     // Full part / modeled part: each symmetry plane whose normal is normal to the motion mirrors the
-    // die force; two orthogonal such planes make a quarter (x4). Other sectors must say it.
+    // die force; two orthogonal such planes make a quarter (x4). Other sectors must say it. (Normal:
+    // a dot product of unit vectors under 1e-9, their round-off.)
     std::vector<Vec3> mirror;
     for (const auto& pl : planes)
       if (std::abs(dot(pl.normal, die.motion.direction)) < 1e-9) mirror.push_back(pl.normal);
@@ -482,8 +484,8 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
   {
     Section t = top.section("time", true);
     s.time.end = t.number("end", std::nullopt, {0, 1e6, true, false});
-    // measured defaults (docs/studies.md): 0.9 gives the CFL-0.5 answer at half the steps, but a die's
-    // penalty stiffness is tied to the step (k = 0.25 m / dt^2), so with dies the default stays 0.5
+    // defaults (docs/decisions.md, "CFL default: 0.9 without dies, 0.5 with dies"): a die's penalty
+    // stiffness is tied to the step (k = s m / dt^2), so with dies the default stays 0.5
     s.time.cfl = t.number("cfl", s.dies.empty() ? 0.9 : 0.5, {0, 2, true, false});
     s.time.output_interval = t.number("output_interval", s.time.end / 10, {0, 1e6, true, false});
     s.time.mass_scaling_dt = t.number("mass_scaling_dt", 0.0, {0, 1});

@@ -131,6 +131,9 @@ struct Scene {
     double checkpoint_minutes = 0;         // wall-clock minutes between checkpoints (0: off)
   } output;
 
+  // The bounds' reasons (docs/scene.md): 0.05 lies above the method's error on the shipped scenes
+  // (docs/validation.md); a step 1e-3 of the first would never end the run; 0.25 spacings is far past
+  // any penalty spring's depth; 20 is about twice the largest pressure ratio of the shipped scenes.
   struct Health {
     double max_energy_error = 0.05;  // fraction of the energy scale; past it the run stops
     double min_dt_ratio = 1e-3;      // stable step / initial step below which the run stops

@@ -1,5 +1,6 @@
-// Energy monitor (DESIGN.md section 3): kinetic, internal (stored elastic + plastic work, from the
-// material state, not from the forces, + the bulk viscosity's work) and the work of the boundary forces; see energy_error().
+// Energy monitor (docs/scene.md, "Energy"): kinetic, internal (stored elastic + plastic work, from
+// the material state, not from the forces, + the bulk viscosity's work) and the work of the boundary
+// forces; see energy_error().
 #pragma once
 #include <vector>
 

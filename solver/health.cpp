@@ -113,7 +113,8 @@ void HealthChecks::energy_runaway(const Model& md, const State& st, double energ
   std::ostringstream why;
   why << "energy error " << energy_error << " exceeds health.max_energy_error = " << scene_.health.max_energy_error
       << " at step " << st.step << ", t = " << st.t << " s (last frame written)";
-  // a mode the field does not carry, faster than anything that started the run: unstable
+  // a velocity the field does not carry, over half the fastest start or tool: nothing that started
+  // the run explains it, an unstable mode
   const bool mode = std::sqrt(std::max(largest, 0.0)) > 0.5 * scales_.v_start;
   if (where >= 0 && mode)
     why << "; the velocity the field does not carry is largest at " << describe_particle(md, st, where) << " ("

@@ -1,5 +1,5 @@
 // rksolve: explicit RKPM on N ranks, each reading only its own subdomain file.
-//   mpirun -np N rksolve CASE [--set key.path=value ...] [--quiet]
+//   mpirun -np N rksolve CASE [--set key.path=value ...] [--quiet] [--restart]
 #include <mpi.h>
 
 #include <cstdio>

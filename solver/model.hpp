@@ -38,7 +38,7 @@ struct Model {
   std::vector<double> face_particles;  // owned particles per face (all_faces numbering)
   // where the material at each owned particle is: its row N_J(X_I) (local J, CSR over the local
   // particles; empty for the others; {I: 1} where the moment matrix is singular), for contact at
-  // u^h(X_I) (die_contact.hpp) and to show u^h(X_I) in the results
+  // u^h(X_I) (contact/die_contact.hpp) and to show u^h(X_I) in the results
   std::vector<std::int32_t> material_offsets, material_cols;
   std::vector<double> material_N;
 

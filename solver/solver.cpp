@@ -110,6 +110,7 @@ class Simulation {
 void Simulation::run() {
   for (;;) {
     timer_.start();
+    // the end within 1e-12 of it: the round-off of the summed steps
     const bool last = st_.t >= scene_.time.end * (1 - 1e-12);
     if (update_due_) reference_update();        // the current configuration becomes the reference
     if (checkpoint_due(last)) checkpoint();     // t^n, v^{n-1/2}
@@ -212,7 +213,8 @@ void Simulation::check_health() const {
   health_->after_reduction(md_, st_, *dies_, limits_, stable_, stress_, healthy_, comm_, last_frame_);
 }
 
-// The stable step, shortened to land on the end and on the next output time.
+// The stable step, shortened to land on the end and on the next output time (an output time within
+// 1e-9 of the interval counts as reached: the clock's round-off).
 double Simulation::step_size(bool last) {
   double dt = limits_.dt;
   clock_.dt_stable = dt;
@@ -264,6 +266,7 @@ void Simulation::boundary_work(double dt_avg) {
   timer_.stop(kBoundaryWork);
 }
 
+// A row every time.end / 500 (io/history.hpp), due within 1e-9 of that: the clock's round-off.
 bool Simulation::history_due(bool last) const {
   const double hist_dt = scene_.time.end / 500;
   return last || st_.t >= clock_.next_history - 1e-9 * hist_dt;
@@ -274,9 +277,10 @@ void Simulation::history(double dt, bool last) {
   const double t_end = scene_.time.end;
   max_ebc_error_ = std::max(max_ebc_error_, row.ebc_error);
   clock_.last_error = row.energy_error;
-  // past the start-up: the first 100 steps, and for a part that starts at rest (its energy scale
-  // grows from 0 with the tools' work) the first 10 % of the run; a die's first contacts take a
-  // dozen steps, an unstable mode hundreds to thousands (the beam's at CFL 1.2, about 500)
+  // past the start-up (docs/decisions.md, "The energy check skips the start-up"): the first 100
+  // steps, and for a part that starts at rest (its energy scale grows from 0 with the tools' work)
+  // the first 10 % of the run. KE / internal counts past 5 % of the run, once the internal energy
+  // has formed.
   const bool started = st_.step >= 100 && (clock_.kinetic0 > 0 || st_.t > 0.1 * t_end);
   if (started || last) clock_.max_error = std::max(clock_.max_error, row.energy_error);
   if (st_.t > 0.05 * t_end) clock_.max_ke_ratio = std::max(clock_.max_ke_ratio, row.kinetic_internal);
@@ -285,6 +289,7 @@ void Simulation::history(double dt, bool last) {
   timer_.stop(kHistory);
 }
 
+// Due within 1e-9 of the interval, as history_due.
 bool Simulation::output_due(bool last) const {
   return last || st_.t >= clock_.next_output - 1e-9 * scene_.time.output_interval;
 }

@@ -42,7 +42,7 @@ struct State {
   double total_J(std::size_t g) const { return J_ref.empty() ? J[g] : J[g] * J_ref[g]; }
 
   // work of the body force done on the OWNED particles of this rank (sum over ranks = total); the
-  // contact forces' work is the obstacles' (die_contact.hpp)
+  // contact forces' work is the obstacles' (contact/die_contact.hpp)
   double external_work = 0;
   double update_work = 0;  // kinetic energy changed by reference updates (<= 0: smoothed away)
   double viscous_work = 0;  // work of the bulk viscosity on this rank's points (dissipated, >= 0)

@@ -16,6 +16,7 @@ double smallest_stretch(const double F[9], double detF) {
   const double off = C[3] * C[3] + C[4] * C[4] + C[5] * C[5];
   const double d0 = C[0] - q, d1 = C[1] - q, d2 = C[2] - q;
   const double p = std::sqrt((d0 * d0 + d1 * d1 + d2 * d2 + 2 * off) / 6);
+  // C isotropic to round-off (spread below 1e-14 of its mean): all three eigenvalues are q
   if (!(p > 1e-14 * q)) return std::sqrt(std::max(q, 0.0));
   const double B[6] = {d0 / p, d1 / p, d2 / p, C[3] / p, C[4] / p, C[5] / p};
   const double detB = B[0] * (B[1] * B[2] - B[4] * B[4]) - B[3] * (B[3] * B[2] - B[4] * B[5]) +
@@ -38,6 +39,7 @@ StableStep stable_time_step(const Model& md, const State& st, double cfl) {
   double dt = std::numeric_limits<double>::infinity();
   std::size_t which = 0;
   for (std::size_t c = 0; c < md.cells; ++c) {
+    // (the 1e-12 floor keeps c real until the stress update's health check stops a collapsed cell)
     const double c2 = md.wave_modulus * std::max(st.cell_J[c], 1e-12) / md.density;
     const double scale0 = md.cell_h0[c] / std::sqrt(c2);  // dt of the cell = scale * stretch
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {

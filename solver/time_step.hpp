@@ -1,10 +1,13 @@
-// Stable time step from the CURRENT deformation (the Taylor bar's falls > 20x while it mushrooms).
-// In total-Lagrangian RKPM the stiffness M^-1 K depends on the particles' motion only through F at
-// the integration points (grad_x N = grad_X N F^-1), so the step is measured there, not from how
-// close particles come (their coefficients may crowd without stiffening anything):
+// Stable time step from the CURRENT deformation, taken every step (it shortens as the part is
+// compressed). In total-Lagrangian RKPM the stiffness M^-1 K depends on the particles' motion only
+// through F at the integration points (grad_x N = grad_X N F^-1), so the step is measured there, not
+// from how close particles come (their coefficients may crowd without stiffening anything):
 //   dt = CFL * min over cells of h0_c * min_{g in c} sigma_min(F_g) / c_c,
-// h0_c the cell's shortest reference edge, sigma_min the smallest principal stretch, and
-// c_c^2 = (K + 4G/3) / rho the dilatational wave speed at the current density rho = rho0 / Jbar.
+// h0_c the cell's shortest edge at t = 0 (after a reference update the shorter of that and its edge
+// on the new reference: model.cpp), sigma_min the smallest principal stretch, and
+// c_c^2 = (K + 4G/3) / rho the dilatational wave speed at the current density rho = rho0 / Jbar;
+// with bulk viscosity each point's term shrinks by its factor (material/bulk_viscosity.hpp).
+// Why: docs/decisions.md, "Stable time step from the deformation at the integration points".
 #pragma once
 #include "model.hpp"
 #include "state.hpp"

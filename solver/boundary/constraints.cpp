@@ -27,6 +27,7 @@ std::string where(const Model& md, std::size_t I) {
   return s.str();
 }
 
+// Within 1e-6 of the particle's spacing: the mesh coordinates' round-off, far below any spacing.
 bool on_plane(const Model& md, std::size_t I, const Vec3& point, const Vec3& normal) {
   double d = 0;
   for (int i = 0; i < 3; ++i) d += (md.X[3 * I + i] - point[i]) * normal[i];
@@ -83,6 +84,7 @@ std::vector<Candidate> orthonormalize(const Model& md, std::size_t I, std::vecto
       }
     }
     const double len = c.e.norm();
+    // a remainder under 1e-8 of a unit direction is round-off (as is a value coefficient under 1e-8)
     if (len < 1e-8) {  // already held: it must ask for what the others ask
       if (c.value_face >= 0 && std::abs(c.coef) > 1e-8) throw conflict();
       continue;

@@ -1,8 +1,8 @@
 // The pointwise contact laws, apart from the obstacle search and the loops over slaves
 // (die_contact.cpp): for one slave in contact, the force the rigid obstacle puts on it.
 // - Normal: penalty on the penetration depth d, f_n = k d along the obstacle's normal n (toward the
-//   material), k = s m / dt^2 with m the slave's mass and dt the stable step: tied to the step, so
-//   contact never shrinks it. The spring stores k d^2 / 2.
+//   material), k = s m / dt^2 with m the slave's mass and dt the last unclipped global stable step:
+//   tied to the step, so contact never shrinks it (s <= 1). The spring stores k d^2 / 2.
 // - Tangential: Coulomb friction. The stick force f_s is the force that stops the relative
 //   tangential velocity v_t in one step (m |v_t| / dt, the caller's share of it); the slave sticks
 //   when f_s <= mu f_n and slips with mu f_n otherwise, always against v_t.

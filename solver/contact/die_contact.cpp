@@ -50,9 +50,10 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
   active_.reserve(slaves * obstacles);
   clearance_.assign(slaves * obstacles, 0.0);  // 0: looked up at the first step
   // A particle on a symmetry plane (or, with nodal integration, its point) is held on it by the
-  // essential BCs, both ways (u . n = 0); a one-sided penalty on it as well pushed back the material
-  // that crossed and let go of what moved away, a bias away from the plane (the quarter Taylor bar's
-  // footprint 1.3 % wider). It is never looked up for that plane.
+  // essential BCs, both ways (u . n = 0); a one-sided penalty on it as well would push back the
+  // material that crossed and let go of what moved away, a bias away from the plane (docs/decisions.md,
+  // "Contact"). It is never looked up for that plane. On the plane: within 1e-9 of the coordinates'
+  // scale, their round-off.
   for (std::size_t k = dies_.size() + walls_; k < obstacles; ++k) {
     const Plane& p = planes_[k - dies_.size()];
     const double on = 1e-9 * (std::abs(p.point[0]) + std::abs(p.point[1]) + std::abs(p.point[2]) + hmax);
@@ -126,6 +127,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     if (die) stroke_last_[k] = stroke;
     const double mu = die ? dies_[k].friction : 0.0;
     const double margin = margin_;
+    // a clearance under 1e-6 of the margin is the bound's round-off: the slave is looked up
     const double clear = 1e-6 * margin;  // only a slave at least this far out is skipped
     DieTotals& tot = totals_[die ? k : planes_[k - dies_.size()].total];
     // The obstacle's closest point to x (current), in its own frame.

@@ -51,7 +51,8 @@ class DieContact {
   void account(const Model& md, const State& st, const std::vector<double>& v_old, double dt_avg, double t);
 
   // The box the part may move in: its initial box joined with every die's box at time t, grown by a
-  // quarter of its largest side. A particle outside has left the tools (a health check).
+  // quarter of its largest side (room for the material the tools push out). A particle outside has
+  // left the tools (a health check).
   void box(const double part_lo[3], const double part_hi[3], double t, double lo[3], double hi[3]) const;
 
   // One entry per die, one per rigid wall, then one for the symmetry planes (when the scene has any).

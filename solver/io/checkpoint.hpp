@@ -16,10 +16,10 @@
 
 namespace rk {
 
-// What the time loop carries besides the State.
 // The layout of the checkpoint files: a reader refuses another.
 inline constexpr std::int64_t kCheckpointFormat = 4;
 
+// What the time loop carries besides the State.
 struct RunClock {
   double next_output = 0, next_history = 0, dt_stable = 0, kinetic0 = 0, last_error = 0, max_ke_ratio = 0;
   double max_error = 0;  // the largest energy error of the run so far

@@ -16,10 +16,10 @@ namespace rk {
 // The frame's files and layout: shared/result_frame.hpp.
 class ResultWriter {
  public:
-  // One file per frame, each written whole or not at all
-  // (durable_file). resume_frames < 0: a new run (old frames are removed); otherwise keep the first
-  // resume_frames frames (a restart drops the frames written after its checkpoint). Each frame carries
-  // the scene hash of the subdomains it was computed on (rkpost merges only its own case's frames).
+  // One file per frame, each written whole or not at all (io/durable_file.hpp). resume_frames < 0: a
+  // new run (old frames are removed); otherwise keep the first resume_frames frames (a restart drops
+  // the frames written after its checkpoint). Each frame carries the scene hash of the subdomains it
+  // was computed on (rkpost merges only its own case's frames).
   ResultWriter(const std::string& case_dir, const Model& md, const std::string& scene_hash, std::int64_t resume_frames = -1);
   // Collective (the particle values of point quantities need the overlap exchange).
   void write_frame(const Model& md, const State& st, const std::vector<double>& velocity, const Comm& comm);

@@ -35,8 +35,9 @@ void Progress::banner(bool restart, double setup_s, double mass_scaling) const {
 void Progress::step(const State& st, double dt, double energy_error, const std::vector<double>& history_row) {
   if (!show_ || comm_.wtime() - last_wall_ <= (terminal_ ? 2.0 : 10.0)) return;
   const double now = comm_.wtime(), rate = double(st.step - last_step_) / (now - last_wall_);
-  // the ETA from the last interval's pace (simulated seconds per wall second), not the run's average:
-  // in forming the step keeps shrinking, and the average promised about half the time it took
+  // the ETA from the last interval's pace (simulated seconds per wall second), not the run's average,
+  // which promises too little where the step keeps shrinking (docs/decisions.md, "The progress line's
+  // ETA from the last interval's pace")
   const double pace = (st.t - last_t_) / (now - last_wall_);
   const double eta = pace > 0 ? (t_end_ - st.t) / pace : 0.0;
   last_wall_ = now;

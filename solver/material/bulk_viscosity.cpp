@@ -18,6 +18,7 @@ void update_bulk_viscosity(const Model& md, State& st, const Scene::BulkViscosit
   for (std::size_t c = 0; c < md.cells; ++c) {
     const auto g0 = std::size_t(md.cell_points[c]), g1 = std::size_t(md.cell_points[c + 1]);
     if (g0 == g1) continue;  // (nodal integration leaves cells without points)
+    // (the 1e-12 floor keeps c real until the stress update's health check stops a collapsed cell)
     const double c_wave = std::sqrt(md.wave_modulus * std::max(st.cell_J[c], 1e-12) / md.density);
     double h = 0;  // the particle spacing about the cell: the resolution a shock is spread over
     const auto n0 = md.cell_node_offsets[c], n1 = md.cell_node_offsets[c + 1];

@@ -8,10 +8,11 @@ namespace {
 
 // Matrix logarithm of b = I + X and exponential of A by truncated series, for the elastic stretches
 // of metals (|X| <= 0.5): rational and polynomial in the argument, so exactly objective, and
-// cheaper than an eigen-decomposition (which, per point, would not run across lanes). All the matrices of one series commute, so their
-// products are symmetric (commuting_product). The number of terms, per lane, keeps the truncation
-// below 1e-17; each lane starts its Horner recursion at its own term, so it computes what it would
-// alone.
+// cheaper than an eigen-decomposition (which, per point, would not run across lanes). All the
+// matrices of one series commute, so their products are symmetric (commuting_product). The number
+// of terms, per lane, keeps the truncation below 1e-17, under double round-off (the loop bounds, 30
+// and 40 terms, only guard termination); each lane starts its Horner recursion at its own term, so
+// it computes what it would alone (docs/decisions.md, "Elastic log strain by series").
 
 // log(I + X) = 2 atanh(Y), Y = X (2I + X)^{-1} (X and Y commute): odd powers of Y only, and
 // |Y| ~ |X|/2, so about a third of the terms of the plain series sum_k (-1)^{k+1} X^k / k.
@@ -71,6 +72,7 @@ Lane return_map(const J2Params& p, Lane q, J2Batch& b) {
     p.yield_and_slope(b.ep[l], y, h);
     if (!(q[l] > y)) continue;
     double dg = (q[l] - y) / (3 * p.shear + h);  // one step for linear hardening
+    // power law: Newton to round-off (a step below 1e-14 of dgamma); 50 iterations only guard the loop
     for (int it = 0; it < 50 && p.power_law; ++it) {
       p.yield_and_slope(b.ep[l] + dg, y, h);
       const double step = (q[l] - 3 * p.shear * dg - y) / (3 * p.shear + h);

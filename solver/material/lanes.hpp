@@ -13,7 +13,7 @@ constexpr int kLanes = 8;  // one 512-bit register: the 8 points of a 2x2x2 Gaus
 #elif defined(__AVX__)
 constexpr int kLanes = 4;  // one 256-bit register
 #else
-constexpr int kLanes = 2;  // one SSE2 register (4 lanes there spill: measured 2x slower)
+constexpr int kLanes = 2;  // one SSE2 register (4 lanes there spill: docs/decisions.md, "Speed")
 #endif
 using Lane = double __attribute__((vector_size(8 * kLanes)));
 using LaneMask = long long __attribute__((vector_size(8 * kLanes)));  // -1 true, 0 false
@@ -34,7 +34,7 @@ inline bool any(LaneMask m) {
 
 // r^(1/3) for r near 1 (the F-bar ratio Jbar/J): two Newton steps from 1 + e/3 - e^2/9, e = r - 1,
 // reach round-off for |e| <= 0.1 (initial error 5e^3/81, squared by each step); lanes farther out
-// take std::cbrt. Replaces a libm call per point (5 % of the run).
+// take std::cbrt. Replaces a libm call per point (docs/decisions.md, "Speed").
 inline Lane cube_root_near_one(Lane r) {
   const Lane e = r - 1;
   Lane x = 1 + e * (1.0 / 3 - e * (1.0 / 9));

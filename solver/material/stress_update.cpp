@@ -101,8 +101,8 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
         wJ += md.weight[p] * st.total_J(p);
         w += md.weight[p];
         // The material's volume ratio (the cell's with F-bar): no solid metal is squeezed to half its
-        // volume or stretched to twice it by forming or impact pressures (copper at 1000 m/s: 0.8), so
-        // past that the state is not physical (a pressure of 0.69 K, 90 GPa in copper).
+        // volume or stretched to twice it by forming or impact pressures (docs/decisions.md,
+        // "Materials"), so past that the state is not physical (a pressure of 0.69 K, 90 GPa in copper).
         const double J = md.fbar ? 0.0 : st.total_J(p);
         if (!md.fbar && !(J > kMinVolumeRatio && J < 1 / kMinVolumeRatio) && health.ok) health = {false, p, J};
         if (!md.fbar)

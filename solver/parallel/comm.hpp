@@ -1,5 +1,6 @@
 // The MPI world as the solver sees it: reductions and collective error checks. With the overlap
-// exchange (parallel/overlap_exchange.cpp) these are the only places that call MPI.
+// exchange (parallel/overlap_exchange.cpp) and main.cpp's start and end, these are the only places
+// that call MPI.
 #pragma once
 #include <mpi.h>
 

@@ -1,11 +1,12 @@
 // Deterministic sums: force contributions are converted to fixed point and accumulated in 64-bit
 // integers. Integer addition is associative, so a particle's force is bitwise the same whatever the
 // order of its contributions and however the points are split over ranks: the answer does not
-// depend on the rank count (DESIGN.md section 4). The scale is set each step from a global bound B
-// on the contributions, |x| <= B, and the headroom h, the bits for the most contributions any
-// particle receives (force_headroom: counted over all ranks, so it does not depend on the
-// partition either): |x * scale| < 2^(62-h), so no sum can overflow; resolution B * 2^(h-62)
-// (2^-53 B at 500 contributions), the rounding of a double sum of the same terms.
+// depend on the rank count (docs/decisions.md, "Rank-count independence by fixed-point force sums").
+// The scale is set each step from a global bound B on the contributions, |x| <= B, and the headroom
+// h, the bits for the most contributions any particle receives (force_headroom: counted over all
+// ranks, so it does not depend on the partition either): |x * scale| < 2^(62-h), so no sum can
+// overflow; resolution B * 2^(h-62) (2^-53 B at 500 contributions), the rounding of a double sum of
+// the same terms.
 #pragma once
 #include <bit>
 #include <cmath>

@@ -10,6 +10,7 @@ OverlapExchange::OverlapExchange(const Model& model, int width) : model_(model),
   requests_.resize(2 * model.overlap.size());
 }
 
+// Tag 17: any tag serves, these are the solver's only point-to-point messages.
 void OverlapExchange::start(const std::vector<Fixed>& partial) {
   const int k = int(model_.overlap.size());
   for (int q = 0; q < k; ++q)

@@ -63,13 +63,10 @@ std::vector<std::vector<std::int32_t>> gather_lists(const std::vector<std::int32
 // of a flange) a point can lose the particles on one side and its moment matrix degenerates. So:
 // start from h_I at t = 0; every point whose neighbours surround it poorly (neighbour_spread below
 // kPoor, a decade below the worst point of a fresh lattice, 0.3) grows by kGrow the spacing of
-// the particles within kReach supports of it, once. Once: the growth must not feed on itself. With
-// the pivot ratio of the moment matrix as the measure and rounds until no point was poor, a grown
-// support lowered the ratio of every point it reached (the ratio falls with the largest support
-// around a point), those grew theirs, and at one update of back extrusion every support in the billet
-// became 6x its size: the discretization blurred and the punch lost its contacts (points the update
-// had carried into the dies, one-sided, set it off; they are kept out now). The points are
-// tested on their ranks and the grown particles are shared, so every rank count grows the same ones.
+// the particles within kReach supports of it (a modest growth over the poor point's neighbourhood),
+// once: the growth must not feed on itself (docs/decisions.md, "Reference updates: supports grown by
+// a scale-free spread, once"). The points are tested on their ranks and the grown particles are
+// shared, so every rank count grows the same ones.
 std::vector<double> conditioned_spacing(const Model& md, const Scene& scene, const std::vector<double>& Xr,
                                         const std::vector<double>& volume, std::vector<double> spacing, const Comm& comm) {
   constexpr double kPoor = 0.03, kGrow = 1.25, kReach = 1.5;
@@ -124,10 +121,9 @@ void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm
     for (auto g = g0; g < g1; ++g) {
       double x[3];  // x_g = X_g + u^h(X_g)
       point_position(md, st, g, x);
-      // Dies and walls hold the field itself (die_contact.hpp), so a point in one is only as deep as
-      // its penalty spring and stays there: putting it back would cut the spring's layer off the
-      // material at every update (back extrusion: 12 mm^3 of its 9 400 per update, the cup wall 12 %
-      // short at full stroke).
+      // Dies and walls hold the field itself (contact/die_contact.hpp), so a point in one is only as
+      // deep as its penalty spring and stays there: putting it back would cut the spring's layer off
+      // the material at every update (docs/decisions.md, "Contact").
       for (int i = 0; i < 3; ++i) md.point_X[3 * g + i] = x[i];
       // C_p^-1 <- Fbar C_p^-1 Fbar^T, the trial elastic left Cauchy-Green tensor of this state
       const double ratio = md.fbar ? std::cbrt(st.cell_J[c] / st.J[g]) : 1.0;
@@ -137,20 +133,19 @@ void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm
       volume += md.weight[g] * st.J_ref[g] * st.J[g], weight += md.weight[g];
     }
     // The points' volumes on the new reference, w_g J_ref. With F-bar the material responds to its
-    // cell's volume change, not to a point's own J; carried into the point's volume, the points' J
-    // scattered within a cell (0.34 to 2.1 at back extrusion's punch corner), the next stage's F-bar
-    // mean (by w_g) no longer measured the cell's volume, and the billet gained volume that no
-    // pressure resisted: from -0.45 % to +0.4 % over the stroke, the energy error up to 2.3 % at
-    // 1.6 mm. Every point of a cell takes the cell's mean instead (-0.42 to -0.50 %, 0.2-0.3 %).
+    // cell's volume change, not to a point's own J, so every point of a cell takes the cell's mean:
+    // the points' own J scatter within a cell, and carried into their volumes the next stage's F-bar
+    // mean (by w_g) would no longer measure the cell's volume (docs/decisions.md, "Reference updates:
+    // every point of an F-bar cell takes the cell's volume").
     for (auto g = g0; g < g1; ++g) st.J_ref[g] = md.fbar ? volume / weight : st.J_ref[g] * st.J[g];
   }
   // The owned particles' new reference positions and velocities: those of the material they sit in,
   // x_I = X_I + u^h(X_I) and v^h(X_I) (coefficients that the old shape functions smoothed away would
-  // strain the new ones: kept, they jolted the dies' contacts), positions put back onto their faces;
-  // a particle in a die or a wall stays where its penalty spring holds it, as the points do (the
-  // contact holds u^h(X_I), so the spring keeps its depth across the update).
-  // The coefficients become d_I = x_I - X_I and v_I = v^h;
-  // the kinetic energy this removes is booked as update_work. Nothing here throws: every rank must
+  // strain the new ones), positions put back onto their faces; a particle in a die or a wall stays
+  // where its penalty spring holds it, as the points do (the contact holds u^h(X_I), so the spring
+  // keeps its depth across the update). The coefficients become d_I = x_I - X_I and v_I = v^h; the
+  // kinetic energy this removes is booked as update_work (docs/decisions.md, "Reference updates: the
+  // particles take the material's position and velocity"). Nothing here throws: every rank must
   // reach the rebuild's collectives.
   const LocalShapes shapes(md.Xr, md.volume, md.spacing, scene);
   std::vector<std::int32_t> cols;

@@ -2,13 +2,13 @@
 // shapes of t = 0; where the material shears hard (back extrusion: the metal turning the punch
 // corner) the supports become thin slivers that no longer hold the material together. An update
 // makes the current configuration the new reference: particles and integration points move to where
-// the material they sit in is, x = X + u^h(X) (the points keep their t = 0 volumes as weights;
-// material pressed into a die or a wall, where the contact holds the field, stays at its spring's
-// depth), the
-// particles take the material's velocity v^h(X_I) (the kinetic energy this smooths away is booked as
-// update_work), the shape functions are rebuilt there on supports of the t = 0 size, grown once
-// where the particles surround a point poorly, and the plastic state is pushed forward (C_p^-1 <- Fbar C_p^-1
-// Fbar^T, so the next stress update is unchanged). Masses and stored energies are untouched.
+// the material they sit in is, x = X + u^h(X) (the points keep their t = 0 volumes as weights, with
+// J_ref; material pressed into a die or a wall, where the contact holds the field, stays at its
+// spring's depth), the particles take the material's velocity v^h(X_I) (the kinetic energy this
+// smooths away is booked as update_work), the shape functions are rebuilt there on supports of the
+// t = 0 size, grown once where the particles surround a point poorly, and the plastic state is pushed
+// forward (C_p^-1 <- Fbar C_p^-1 Fbar^T, so the next stress update is unchanged). Masses and stored
+// energies are untouched. Why each choice: docs/decisions.md, "Reference updates".
 //
 // Parallel: the points stay on their rank; the rank's local particles are found again with rkprep's
 // rules on the new reference (local_particles.hpp), from the owned particles gathered by every rank,

@@ -1,6 +1,7 @@
 // A row of three doubles updated as one: F_i. += u_i grad N and f += w P grad N in the neighbour
 // loops. With AVX it is a four-wide vector (lane 3 is 0), one register and one instruction per
-// update; without, three scalars (two-register vectors of four cost 4-5x more there: measured).
+// update; without, three scalars (a vector of four there takes two registers and is slower:
+// docs/decisions.md, "Vector registers in the hot loops").
 #pragma once
 
 namespace rk {

@@ -23,7 +23,7 @@ TEST(Contracts, RunSummaryReadsBackWhatWasWritten) {
   rk::RunSummary s;
   s.steps = 10705, s.time = 8e-5, s.particles = 1369, s.max_energy_error = 6.3e-4, s.ebc_method = "nodal";
   s.mass_scaling = 12.5, s.warnings = {"die 'punch' never touched the part"};
-  for (int p = 0; p < rk::kPhaseCount; ++p) s.phases[rk::kPhaseNames[p]] = {0.5 * p, 1.0 * p};
+  for (int p = 0; p < rk::kPhaseCount; ++p) s.phases[rk::kPhaseNames[p]] = {0.5 * p, double(p)};
   rk::write_run_summary(path, s);
   const rk::RunSummary r = rk::read_run_summary(path);
   EXPECT_EQ(r.format, rk::kRunSummaryFormat);
@@ -35,7 +35,7 @@ TEST(Contracts, RunSummaryReadsBackWhatWasWritten) {
   EXPECT_EQ(r.mass_scaling, s.mass_scaling);
   EXPECT_EQ(r.warnings, s.warnings);
   ASSERT_EQ(r.phases.size(), std::size_t(rk::kPhaseCount));
-  EXPECT_EQ(r.phases.at("contact").max_s, 1.0 * rk::kContact);
+  EXPECT_EQ(r.phases.at("contact").max_s, double(rk::kContact));
   std::filesystem::remove(path);
 }
 
