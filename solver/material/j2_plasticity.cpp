@@ -60,13 +60,50 @@ void set_lane(Sym& a, int l, const Eigen::Matrix3d& m) {
   a.v[3][l] = m(0, 1), a.v[4][l] = m(1, 2), a.v[5][l] = m(2, 0);
 }
 
-// Radial return, lane by lane (scalar: a few flops, or a Newton iteration for the power law):
-// q - 3G dgamma = sigma_y(ep + dgamma). Returns dgamma (0 where the trial state is elastic).
+// Johnson-Cook's return for one point: q - 3G dg = sigma_y(ep + dg, dg / dt, T). The residual falls
+// strictly with dg (sigma_y grows with strain and rate), and at dg0 = (q - sigma_y(ep, 0, T)) / 3G it
+// is <= 0, so the root lies in [0, dg0]: Newton, kept in that bracket by bisection, to round-off.
+double johnson_cook_return(const J2Params& p, double q, double ep, double T, double dt) {
+  double y, h, hr;
+  p.flow(ep, 0.0, T, y, h, hr);
+  double lo = 0, hi = (q - y) / (3 * p.shear), dg = hi;
+  // 100 iterations only guard the loop: the bracket halves at least every other one
+  for (int it = 0; it < 100; ++it) {
+    const double rate = dt > 0 ? dg / dt : 0.0;
+    p.flow(ep + dg, rate, T, y, h, hr);
+    const double r = q - 3 * p.shear * dg - y;
+    (r > 0 ? lo : hi) = dg;
+    const double slope = 3 * p.shear + h + (dt > 0 ? hr / dt : 0.0);
+    double next = dg + r / slope;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);  // Newton left the bracket (or slope infinite)
+    const bool done = std::abs(next - dg) <= 1e-14 * dg || hi - lo <= 1e-15 * hi;  // round-off of dg
+    dg = next;
+    if (done) break;
+  }
+  return dg;
+}
+
+// Radial return, lane by lane (scalar: a few flops, or a Newton iteration for the power law and
+// Johnson-Cook): q - 3G dgamma = sigma_y(ep + dgamma). Returns dgamma (0 where the trial state is elastic).
 Lane return_map(const J2Params& p, Lane q, J2Batch& b) {
   Lane dgamma{};
   b.plastic = LaneMask{};
   b.dissipation = Lane{};
   if (!p.plastic) return dgamma;
+  if (p.johnson_cook) {
+    for (int l = 0; l < kLanes; ++l) {
+      double y, h, hr;
+      p.flow(b.ep[l], 0.0, b.T[l], y, h, hr);
+      if (!(q[l] > y)) continue;
+      const double dg = johnson_cook_return(p, q[l], b.ep[l], b.T[l], b.dt);
+      p.flow(b.ep[l] + dg, b.dt > 0 ? dg / b.dt : 0.0, b.T[l], y, h, hr);
+      dgamma[l] = dg;
+      b.ep[l] += dg;
+      b.plastic[l] = -1;
+      b.dissipation[l] = y * dg;
+    }
+    return dgamma;
+  }
   for (int l = 0; l < kLanes; ++l) {
     double y, h;
     p.yield_and_slope(b.ep[l], y, h);
@@ -88,6 +125,18 @@ Lane return_map(const J2Params& p, Lane q, J2Batch& b) {
 }
 
 }  // namespace
+
+void J2Params::flow(double ep, double rate, double T, double& y, double& dy_dep, double& dy_drate) const {
+  const double strain = yield0 + jc_b * std::pow(ep, jc_n);
+  const double strain_slope = ep > 0 ? jc_b * jc_n * std::pow(ep, jc_n - 1) : (jc_n < 1 ? INFINITY : jc_b * jc_n);
+  const double fast = rate > jc_rate0;  // below the reference rate the law is quasi-static
+  const double rate_factor = fast ? 1 + jc_c * std::log(rate / jc_rate0) : 1.0;
+  const double homologous = (T - t_room) / (t_melt - t_room);
+  const double thermal = homologous <= 0 ? 1.0 : homologous >= 1 ? 0.0 : 1 - std::pow(homologous, jc_m);
+  y = strain * rate_factor * thermal;
+  dy_dep = strain_slope * rate_factor * thermal;
+  dy_drate = fast ? strain * thermal * jc_c / rate : 0.0;
+}
 
 void J2Batch::at_rest(int l) {
   for (int i = 0; i < 9; ++i) F.v[i][l] = (i % 4 == 0);
@@ -138,9 +187,10 @@ void j2_update(const J2Params& p, J2Batch& b) {
   b.cp_inv = select(b.plastic, (1 / (det * det)) * congruence(cof, be_new, true), b.cp_inv);
 }
 
-J2Update j2_update(const Eigen::Matrix3d& F, const J2Params& p, double cp_inv[6], double& ep) {
+J2Update j2_update(const Eigen::Matrix3d& F, const J2Params& p, double cp_inv[6], double& ep, double T, double dt) {
   J2Batch b;
-  for (int l = 0; l < kLanes; ++l) b.at_rest(l);
+  for (int l = 0; l < kLanes; ++l) b.at_rest(l), b.T[l] = T;
+  b.dt = dt;
   for (int i = 0; i < 9; ++i) b.F.v[i][0] = F(i / 3, i % 3);
   for (int i = 0; i < 6; ++i) b.cp_inv.v[i][0] = cp_inv[i];
   b.ep[0] = ep;

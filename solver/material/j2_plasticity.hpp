@@ -2,8 +2,11 @@
 // (Simo 1992; de Souza Neto, Peric & Owen, Computational Methods for Plasticity, box 14.3).
 // The plastic state is C_p^{-1} (so b_e^trial = F C_p^{-1} F^T depends on F only: objective by
 // construction) and the equivalent plastic strain ep. Isotropic hardening, linear
-// sigma_y = sigma_y0 + H ep or power law sigma_y = K (eps0 + ep)^n (seed Table 4);
-// `plastic = false` gives the Hencky hyperelastic special case.
+// sigma_y = sigma_y0 + H ep or power law sigma_y = K (eps0 + ep)^n (seed Table 4), or the flow
+// stress of strain, strain rate and temperature of Johnson & Cook (1983),
+//   sigma_y = (A + B ep^n) (1 + C ln max(rate / rate0, 1)) (1 - T*^m),  T* = (T - T_room) / (T_melt - T_room),
+// whose return is rate-dependent: the plastic strain rate is this increment's, dgamma / dt, solved
+// with dgamma (not the last step's rate). `plastic = false` gives the Hencky hyperelastic case.
 // The update runs kLanes integration points at once (lanes.hpp); j2_update(F, ...) is one point.
 #pragma once
 #include <Eigen/Dense>
@@ -19,6 +22,9 @@ struct J2Params {
   bool plastic = true;
   bool power_law = false;                  // power law: sigma_y = K (eps0 + ep)^n
   double strength = 0, eps0 = 0, exponent = 0;
+  // Johnson-Cook: A = yield0, B, n, C, rate0 (1/s), m, T_room and T_melt (K)
+  bool johnson_cook = false;
+  double jc_b = 0, jc_n = 1, jc_c = 0, jc_rate0 = 1, jc_m = 1, t_room = 293.15, t_melt = 0;
   static J2Params from(double E, double nu, double yield0, double H, bool plastic) {
     return {E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu)), yield0, H, plastic};
   }
@@ -27,7 +33,20 @@ struct J2Params {
     p.power_law = true, p.strength = K, p.eps0 = eps0, p.exponent = n;
     return p;
   }
-  double yield(double ep) const { return power_law ? strength * std::pow(eps0 + ep, exponent) : yield0 + hardening * ep; }
+  static J2Params johnson_cook_law(double E, double nu, double A, double B, double n, double C, double rate0, double m,
+                                   double t_room, double t_melt) {
+    J2Params p = from(E, nu, A, 0, true);
+    p.johnson_cook = true, p.jc_b = B, p.jc_n = n, p.jc_c = C, p.jc_rate0 = rate0, p.jc_m = m;
+    p.t_room = t_room, p.t_melt = t_melt;
+    return p;
+  }
+  // The flow stress at ep (Johnson-Cook: quasi-static, at the room temperature).
+  double yield(double ep) const {
+    if (johnson_cook) return yield0 + jc_b * std::pow(ep, jc_n);
+    return power_law ? strength * std::pow(eps0 + ep, exponent) : yield0 + hardening * ep;
+  }
+  // Johnson-Cook's flow stress at (ep, rate, T) and its slopes d/d ep and d/d rate.
+  void flow(double ep, double rate, double T, double& y, double& dy_dep, double& dy_drate) const;
   // sigma_y and d sigma_y / d ep together (one pow for the power law)
   void yield_and_slope(double ep, double& y, double& h) const {
     if (!power_law) {
@@ -50,6 +69,8 @@ struct J2Batch {
   Lane psi;           // stored elastic energy per reference volume (J/m^3)
   Lane dissipation;   // plastic work of this increment per reference volume (J/m^3)
   LaneMask plastic;   // the trial state was outside the yield surface (a return was made)
+  Lane T{};           // temperature (K), Johnson-Cook only: the start of the increment's
+  double dt = 0;      // the increment's time (s), Johnson-Cook only: rate = dgamma / dt (0: no rate effect)
   void at_rest(int lane);
 };
 
@@ -61,7 +82,8 @@ struct J2Update {
   bool plastic = false;
 };
 
-// One point (tests, tools): updates cp_inv and ep in place. F must have det F > 0.
-J2Update j2_update(const Eigen::Matrix3d& F, const J2Params& p, double cp_inv[6], double& ep);
+// One point (tests, tools): updates cp_inv and ep in place. F must have det F > 0; T and dt as in J2Batch.
+J2Update j2_update(const Eigen::Matrix3d& F, const J2Params& p, double cp_inv[6], double& ep, double T = 0,
+                   double dt = 0);
 
 }  // namespace rk

@@ -178,3 +178,109 @@ TEST(J2, CubeRootNearOneMatchesLibm) {
   EXPECT_EQ(rk::cube_root_near_one(rk::splat(8.0))[1], 2.0);
   EXPECT_EQ(rk::cube_root_near_one(rk::splat(1.0))[0], 1.0);
 }
+
+// Johnson-Cook (Johnson & Cook 1983, OFHC copper: A 90 MPa, B 292 MPa, n 0.31, C 0.025, m 1.09,
+// T_melt 1356 K; rho 8960 kg/m^3, c 383 J/kgK).
+const rk::J2Params kJohnsonCook =
+    rk::J2Params::johnson_cook_law(117e9, 0.35, 90e6, 292e6, 0.31, 0.025, 1.0, 1.09, 293.15, 1356.0);
+
+double jc_flow(double ep, double rate, double T) {
+  double y, h, hr;
+  kJohnsonCook.flow(ep, rate, T, y, h, hr);
+  return y;
+}
+
+TEST(J2, JohnsonCookFlowAndSlopesMatchTheLaw) {
+  const double A = 90e6, B = 292e6, n = 0.31, C = 0.025, m = 1.09, Tr = 293.15, Tm = 1356.0;
+  const double ep = 0.3, rate = 2e3, T = 600;
+  const double expected = (A + B * std::pow(ep, n)) * (1 + C * std::log(rate)) * (1 - std::pow((T - Tr) / (Tm - Tr), m));
+  EXPECT_NEAR(jc_flow(ep, rate, T), expected, 1e-12 * expected);
+  double y, h, hr;
+  kJohnsonCook.flow(ep, rate, T, y, h, hr);
+  const double d = 1e-6;  // central differences: their error (d^2) is far below the 1e-6 asked
+  EXPECT_NEAR(h, (jc_flow(ep + d, rate, T) - jc_flow(ep - d, rate, T)) / (2 * d), 1e-6 * h);
+  EXPECT_NEAR(hr, (jc_flow(ep, rate * (1 + d), T) - jc_flow(ep, rate * (1 - d), T)) / (2 * d * rate), 1e-6 * hr);
+  // below the reference rate and the room temperature the law is quasi-static and cold; molten, no strength
+  EXPECT_EQ(jc_flow(ep, 0.5, Tr - 50), A + B * std::pow(ep, n));
+  EXPECT_EQ(jc_flow(ep, rate, Tm + 1), 0.0);
+}
+
+TEST(J2, JohnsonCookReturnLandsOnTheRateDependentFlowStress) {
+  // one isochoric stretch from the virgin state, large enough to yield: the returned von Mises stress is
+  // the flow stress at the new plastic strain, at the rate this increment's plastic strain took (dt)
+  for (double dt : {0.0, 1e-6, 1e-4}) {
+    for (double T : {293.15, 800.0}) {
+      double cp[6] = {1, 1, 1, 0, 0, 0}, ep = 0;
+      const double s = 1.01;
+      const Eigen::Matrix3d F = Eigen::Vector3d(s, 1 / std::sqrt(s), 1 / std::sqrt(s)).asDiagonal();
+      const rk::J2Update up = rk::j2_update(F, kJohnsonCook, cp, ep, T, dt);
+      ASSERT_TRUE(up.plastic);
+      const double flow = jc_flow(ep, dt > 0 ? ep / dt : 0.0, T);
+      EXPECT_NEAR(von_mises(up.tau), flow, 1e-9 * flow) << "dt " << dt << " T " << T;
+      EXPECT_NEAR(up.dissipation, flow * ep, 1e-9 * flow * ep);
+    }
+  }
+}
+
+// Adiabatic homogeneous compression at a constant true strain rate: the temperature rises by
+// beta sigma d ep / (rho c) (Taylor-Quinney beta = 0.9) and softens the metal. Reference: the
+// uniaxial-stress ODE, integrated here by RK4 in another form: sigma = E (eps - ep) (Hencky
+// elasticity, log strain) equals the flow stress, which gives the plastic rate in closed form,
+//   d ep / dt = rate0 exp((sigma / (strain part x thermal part) - 1) / C),  dT / dt = beta sigma (d ep / dt) / (rho c).
+TEST(J2, JohnsonCookAdiabaticCompressionFollowsTheODE) {
+  const double E = 117e9, rate = 1e3, beta = 0.9, rho = 8960, c = 383, T0 = 293.15, end = 0.5;
+  const double A = 90e6, B = 292e6, n = 0.31, C = 0.025, m = 1.09, Tr = 293.15, Tm = 1356.0;
+  // the ODE, RK4 in time from the first yield (elastic until E eps = A)
+  auto derivative = [&](double t, double ep, double T, double& dep, double& dT) {
+    const double sigma = E * (rate * t - ep);
+    const double cold = (A + B * std::pow(std::max(ep, 0.0), n)) * (1 - std::pow((T - Tr) / (Tm - Tr), m));
+    dep = sigma > cold ? std::exp((sigma / cold - 1) / C) : 0.0;  // rate0 = 1 /s
+    dT = beta * sigma * dep / (rho * c);
+  };
+  double t = A / (E * rate), ep = 0, T = T0;
+  const int steps = 200000;
+  const double h = (end / rate - t) / steps;
+  for (int k = 0; k < steps; ++k, t += h) {
+    double a1, b1, a2, b2, a3, b3, a4, b4;
+    derivative(t, ep, T, a1, b1);
+    derivative(t + h / 2, ep + h / 2 * a1, T + h / 2 * b1, a2, b2);
+    derivative(t + h / 2, ep + h / 2 * a2, T + h / 2 * b2, a3, b3);
+    derivative(t + h, ep + h * a3, T + h * b3, a4, b4);
+    ep += h / 6 * (a1 + 2 * a2 + 2 * a3 + a4), T += h / 6 * (b1 + 2 * b2 + 2 * b3 + b4);
+  }
+  const double sigma_ode = E * (end - ep), rise_ode = T - T0;
+
+  // the return map in compression, dt per increment (as the solver's steps), T updated adiabatically
+  struct Compression {
+    double cp[6] = {1, 1, 1, 0, 0, 0}, ep = 0, T = 293.15;
+    rk::J2Update step(double eps, double dt) {
+      double lo = 0.9, hi = 1.5, lam = 1;
+      rk::J2Update up;
+      for (int it = 0; it < 100; ++it) {  // bisection on the lateral stretch: tau_yy = 0
+        lam = 0.5 * (lo + hi);
+        double cp_try[6];
+        std::copy(cp, cp + 6, cp_try);
+        double ep_try = ep;
+        up = rk::j2_update(Eigen::Vector3d(std::exp(-eps), lam, lam).asDiagonal().toDenseMatrix(), kJohnsonCook, cp_try,
+                           ep_try, T, dt);
+        (up.tau(1, 1) > 0 ? hi : lo) = lam;
+      }
+      return rk::j2_update(Eigen::Vector3d(std::exp(-eps), lam, lam).asDiagonal().toDenseMatrix(), kJohnsonCook, cp, ep,
+                           T, dt);
+    }
+  } point;
+  const int increments = 2000;  // 2.5e-4 of strain each (the solver's steps are far smaller)
+  const double dt = end / rate / increments;
+  rk::J2Update up;
+  for (int k = 1; k <= increments; ++k) {
+    up = point.step(end * k / increments, dt);
+    point.T += beta * up.dissipation / (rho * c);
+  }
+  const double sigma = -up.tau(0, 0);
+  // measured (2026-12-02): stress 1.3e-5, temperature rise 2.0e-4, plastic strain 8e-8 from the ODE
+  // (the increments' first-order temperature lag); bounds about twice that, far inside the 0.5 %
+  // asked of the coupled update
+  EXPECT_NEAR(sigma, sigma_ode, 3e-5 * sigma_ode) << "ODE " << sigma_ode << " Pa, T rise " << rise_ode << " K";
+  EXPECT_NEAR(point.T - T0, rise_ode, 4e-4 * rise_ode) << "sigma " << sigma << " Pa vs " << sigma_ode;
+  EXPECT_NEAR(point.ep, ep, 2e-7 * ep);
+}
