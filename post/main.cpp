@@ -136,16 +136,18 @@ std::pair<rk::VtuCells, std::vector<std::int64_t>> read_cells(const std::string&
 }
 
 // --fields: a comma-separated subset of kFields ("all": every one).
-std::vector<Field> select_fields(const std::string& list) {
+std::vector<Field> select_fields(const std::string& list, bool with_temperature) {
+  std::vector<Field> known(std::begin(kFields), std::end(kFields));
+  if (with_temperature) known.push_back(rk::kTemperatureField);
+  if (list == "all") return known;
   std::vector<Field> out;
-  if (list == "all") return {std::begin(kFields), std::end(kFields)};
   std::stringstream ss(list);
   for (std::string name; std::getline(ss, name, ',');) {
-    auto it = std::find_if(std::begin(kFields), std::end(kFields), [&](const Field& f) { return name == f.name; });
-    if (it == std::end(kFields)) {
-      std::string known;
-      for (const auto& f : kFields) known += std::string(known.empty() ? "" : ", ") + f.name;
-      throw rk::Error("--fields: '" + name + "' is not a field (known: " + known + ")");
+    auto it = std::find_if(known.begin(), known.end(), [&](const Field& f) { return name == f.name; });
+    if (it == known.end()) {
+      std::string names;
+      for (const auto& f : known) names += std::string(names.empty() ? "" : ", ") + f.name;
+      throw rk::Error("--fields: '" + name + "' is not a field of this case (known: " + names + ")");
     }
     out.push_back(*it);
   }
@@ -211,7 +213,8 @@ int run(int argc, char** argv) {
   std::vector<rk::DieSurface> dies;
   if (!scene.dies.empty())
     dies = rk::read_subdomain(rk::subdomain_path(case_dir, 0), 0, ranks, scene.prep_hash).dies;
-  const std::vector<Field> fields = select_fields(field_list);
+  // the temperature where the material has one (and the run wrote it)
+  const std::vector<Field> fields = select_fields(field_list, solved && scene.material.thermal());
   const std::vector<int> chosen = select_frames(frame_list, solved ? int(frames) : 1);
   const auto [cells, cell_rank] = read_cells(case_dir, ranks, scene.prep_hash);
   std::vector<rk::PvdEntry> index;

@@ -13,6 +13,8 @@ constexpr const char* kPrescribedFaceColumns[] = {".stroke", ".fx", ".fy", ".fz"
 std::vector<std::string> history_columns(const Scene& scene) {
   std::vector<std::string> c;
   for (const auto& s : kHistoryScalars) c.push_back(s.name);
+  if (scene.material.thermal())
+    for (const auto& t : kTemperatureColumns) c.push_back(t.name);
   for (const auto& w : scene.rigid_walls)
     for (const char* q : kWallColumns) c.push_back(w.name + q);
   for (const auto& d : scene.dies)
@@ -26,6 +28,8 @@ std::vector<std::string> history_columns(const Scene& scene) {
 
 std::string history_unit(const std::string& column) {
   for (const auto& s : kHistoryScalars)
+    if (column == s.name) return s.unit;
+  for (const auto& s : kTemperatureColumns)
     if (column == s.name) return s.unit;
   auto ends = [&](const char* tail) { return column.ends_with(tail); };
   if (ends(".work")) return "J";

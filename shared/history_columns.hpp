@@ -1,7 +1,8 @@
 // CASE/history.csv, the contract between rksolve (the writer) and rkpost and the scripts (readers):
 // a header row of column names, then one row of numbers (%.10g) per history time, SI units, for the
 // modeled part. The columns are named: readers find a column by its name, never by its position.
-// First the run's scalars (kHistoryScalars), then per rigid wall its force along its normal, per die
+// First the run's scalars (kHistoryScalars), then where the material has a temperature its
+// mass-weighted mean, minimum and maximum over the part's points (kTemperatureColumns), then per rigid wall its force along its normal, per die
 // its stroke, press force (along its motion, times force_factor), force components and press work,
 // per fixed face its reaction components, per prescribed face its stroke and reaction components.
 #pragma once
@@ -25,6 +26,9 @@ inline constexpr HistoryColumn kHistoryScalars[] = {
     {"kinetic_internal_ratio", "-"}, {"volume_change", "-"}, {"ebc_error", "m"},
     {"update_work", "J"},     {"spring_energy", "J"},       {"symmetry_depth", "m"},
     {"viscous_work", "J"}};
+
+inline constexpr HistoryColumn kTemperatureColumns[] = {
+    {"temperature_mean", "K"}, {"temperature_min", "K"}, {"temperature_max", "K"}};
 
 // The scene's columns in order: the scalars, then its walls', dies' and faces' columns.
 std::vector<std::string> history_columns(const Scene& scene);

@@ -377,9 +377,11 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
   {
     Section m = top.section("material", true);
     auto& o = s.material;
-    std::string model = m.text("model", std::nullopt, {"elastic", "j2_linear", "j2_power"});
-    o.model = model == "elastic" ? MaterialModel::elastic
-              : model == "j2_power" ? MaterialModel::j2_power : MaterialModel::j2_linear;
+    std::string model = m.text("model", std::nullopt, {"elastic", "j2_linear", "j2_power", "johnson_cook"});
+    o.model = model == "elastic"        ? MaterialModel::elastic
+              : model == "j2_power"     ? MaterialModel::j2_power
+              : model == "johnson_cook" ? MaterialModel::johnson_cook
+                                        : MaterialModel::j2_linear;
     o.density = m.number("density", std::nullopt, {0, 1e6, true, false});
     o.youngs_modulus = m.number("youngs_modulus", std::nullopt, {0, 1e13, true, false});
     o.poisson_ratio = m.number("poisson_ratio", std::nullopt, {-1, 0.5, true, true});
@@ -393,6 +395,18 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
       o.exponent = m.number("exponent", std::nullopt, {0, 1});
       o.yield_stress = o.strength * std::pow(o.reference_strain, o.exponent);
     }
+    if (o.model == MaterialModel::johnson_cook) {  // Johnson & Cook (1983); temperatures in kelvin
+      o.yield_stress = m.number("yield_stress", std::nullopt, {0, 1e12, true, false});
+      o.hardening_coefficient = m.number("hardening_coefficient", std::nullopt, {0, 1e12});
+      o.hardening_exponent = m.number("hardening_exponent", std::nullopt, {0, 1, true, true});
+      o.rate_coefficient = m.number("rate_coefficient", std::nullopt, {0, 1});
+      o.reference_strain_rate = m.number("reference_strain_rate", 1.0, {0, 1e9, true, false});
+      o.thermal_exponent = m.number("thermal_exponent", std::nullopt, {0, 10, true, false});
+      o.melting_temperature = m.number("melting_temperature", std::nullopt, {0, 5000, true, false});
+      o.room_temperature = m.number("room_temperature", 293.15, {0, o.melting_temperature, true, false});
+      o.specific_heat = m.number("specific_heat", std::nullopt, {0, 1e5, true, false});
+      o.taylor_quinney = m.number("taylor_quinney", 0.9, {0, 1});
+    }
     m.done();
   }
   {
@@ -404,6 +418,12 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
       for (int j = 0; j < 3; ++j) s.initial.velocity_gradient[3 * i + j] = row[j];
     }
     grad.done();
+    if (s.material.thermal()) {
+      // kelvin: a billet at 1150 C written as 1150 would be 877 C, and one at 1250 C as 1250 K is
+      // below the melting point of steel, so only the melting point catches a Celsius slip there
+      s.initial.temperature = ic.number("temperature", s.material.room_temperature,
+                                        {0, s.material.melting_temperature, true, false});
+    }
     ic.done();
   }
   {

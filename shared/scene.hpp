@@ -50,7 +50,7 @@ struct EssentialFace {
   DieMotion motion;
 };
 
-enum class MaterialModel { elastic, j2_linear, j2_power };
+enum class MaterialModel { elastic, j2_linear, j2_power, johnson_cook };
 
 struct Material {
   MaterialModel model = MaterialModel::j2_linear;
@@ -60,6 +60,15 @@ struct Material {
   double yield_stress = 0;       // Pa (initial)
   double hardening_modulus = 0;  // Pa (linear isotropic)
   double strength = 0, reference_strain = 0, exponent = 0;  // power law K (eps0 + ep)^n
+  // Johnson-Cook (yield_stress is A): (A + B ep^n) (1 + C ln max(rate / rate0, 1)) (1 - T*^m)
+  double hardening_coefficient = 0, hardening_exponent = 1;  // B (Pa), n
+  double rate_coefficient = 0, reference_strain_rate = 1;    // C, rate0 (1/s)
+  double thermal_exponent = 1;                               // m
+  double room_temperature = 293.15, melting_temperature = 0; // K
+  // heating by plastic work (Johnson-Cook): dT = taylor_quinney dW_p / (rho c), adiabatic
+  double specific_heat = 0;      // J/(kg K)
+  double taylor_quinney = 0.9;   // the share of plastic work that becomes heat
+  bool thermal() const { return model == MaterialModel::johnson_cook; }
 };
 
 struct Scene {
@@ -88,6 +97,7 @@ struct Scene {
   struct Initial {
     Vec3 velocity{};          // m/s, at X = 0
     std::array<double, 9> velocity_gradient{};  // 1/s, row-major d v_i / d X_j: v = velocity + G X
+    double temperature = 0;   // K, uniform (Johnson-Cook material; default its room temperature)
   } initial;
 
   struct Loads {

@@ -217,10 +217,19 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   }
 
   const auto& mat = scene.material;
-  md.material = mat.model == MaterialModel::j2_power
-                    ? J2Params::power(mat.youngs_modulus, mat.poisson_ratio, mat.strength, mat.reference_strain, mat.exponent)
-                    : J2Params::from(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress, mat.hardening_modulus,
-                                     mat.model == MaterialModel::j2_linear);
+  if (mat.model == MaterialModel::johnson_cook) {
+    md.material = J2Params::johnson_cook_law(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress,
+                                             mat.hardening_coefficient, mat.hardening_exponent, mat.rate_coefficient,
+                                             mat.reference_strain_rate, mat.thermal_exponent, mat.room_temperature,
+                                             mat.melting_temperature);
+    md.heat_capacity = mat.density * mat.specific_heat;
+    md.taylor_quinney = mat.taylor_quinney;
+  } else {
+    md.material = mat.model == MaterialModel::j2_power
+                      ? J2Params::power(mat.youngs_modulus, mat.poisson_ratio, mat.strength, mat.reference_strain, mat.exponent)
+                      : J2Params::from(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress, mat.hardening_modulus,
+                                       mat.model == MaterialModel::j2_linear);
+  }
   md.wave_modulus = md.material.bulk + 4.0 / 3.0 * md.material.shear;
   // F-bar averages the dilatation over a cell's points: the identity where every cell has one point
   // (Gauss order 1) and meaningless for nodal points; without it the stress update batches points

@@ -69,6 +69,9 @@ struct Model {
   J2Params material;
   double density = 0;       // kg/m^3, times the mass-scaling factor
   double mass_scaling = 1;  // density factor applied to reach time.mass_scaling_dt
+  // heating by plastic work (Johnson-Cook): dT = taylor_quinney dW_p / heat_capacity, with the
+  // material's own rho0 c (J/(m^3 K), never mass-scaled); 0 without temperature
+  double heat_capacity = 0, taylor_quinney = 0;
   double wave_modulus = 0;  // K + 4G/3, for the dilatational wave speed
   bool fbar = true;
 };

@@ -340,6 +340,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
                                                         std::to_string(scene_.dies.size()) + "; re-run rkprep");
   st_ = State::initial(md_, scene_.initial.velocity.data(), scene_.initial.velocity_gradient.data());
   init_bulk_viscosity(md_, st_, scene_.bulk_viscosity);
+  if (scene_.material.thermal()) st_.temperature.assign(md_.m, scene_.initial.temperature);
   compute_deformation_gradient(md_, st_);
   dt0_ = stable_time_step(md_, st_, scene_.time.cfl).dt;
   comm.min(&dt0_, 1);

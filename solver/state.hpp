@@ -33,6 +33,9 @@ struct State {
   // bulk viscosity (material/bulk_viscosity.hpp), empty when off: q, the stable step's factor, and the det F
   // (from t = 0; the cell's with F-bar) at the last step
   std::vector<double> q, dt_factor, J_last;
+  // temperature (K) per point, Johnson-Cook material only (empty otherwise): raised by the plastic
+  // work of each increment, adiabatically
+  std::vector<double> temperature;
 
   // reference updates (rk/reference_update.hpp); empty until the first: the particles' displacements
   // at the last update (F is gathered from d - d^ref) and each point's det F up to it

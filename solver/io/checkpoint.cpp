@@ -46,6 +46,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
       f.write("points/q", st.q);
       f.write("points/J_last", st.J_last);
     }
+    if (!st.temperature.empty()) f.write("points/temperature", st.temperature);
     if (st.reference_updates > 0) {  // the reference configuration (rk/reference_update.hpp)
       f.write("particles/u_ref", st.u_ref, 3);
       f.write("points/X", md.point_X, 3);
@@ -63,6 +64,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
                check.read<double>("particles/v", 3) == st.v && check.read<double>("points/cp_inv", 6) == st.cp_inv &&
                check.read<double>("points/ep") == st.ep && check.read<double>("points/wp") == st.wp &&
                (st.q.empty() || (check.read<double>("points/q") == st.q && check.read<double>("points/J_last") == st.J_last)) &&
+               (st.temperature.empty() || check.read<double>("points/temperature") == st.temperature) &&
                (st.reference_updates == 0 ||
                 (check.read<double>("particles/u_ref", 3) == st.u_ref && check.read<double>("points/X", 3) == md.point_X &&
                  check.read<double>("points/J_ref") == st.J_ref));
@@ -159,6 +161,12 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
     st.J_last = f.read<double>("points/J_last");
     if (st.q.size() != md.m || st.J_last.size() != md.m)
       throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
+  }
+  if (!st.temperature.empty()) {  // a Johnson-Cook material: its temperatures must be there
+    if (!f.exists("points/temperature"))
+      throw Error(path + ": the checkpoint holds no temperatures (written with another material); restart with the same scene");
+    st.temperature = f.read<double>("points/temperature");
+    if (st.temperature.size() != md.m) throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
   }
   const auto u = f.read<double>("particles/u", 3), v = f.read<double>("particles/v", 3);
   if (updates == 0) {

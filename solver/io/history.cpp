@@ -107,11 +107,26 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
   out.energy_error = energy_error(balance, kinetic0);
   out.kinetic_internal = e.internal > 0 ? e.kinetic / e.internal : 0.0;
 
+  double temperature[3] = {0, 1e300, -1e300};  // sum_g w_g T_g, min, max
+  for (std::size_t g = 0; g < st.temperature.size(); ++g) {
+    temperature[0] += md.weight[g] * st.temperature[g];
+    temperature[1] = std::min(temperature[1], st.temperature[g]);
+    temperature[2] = std::max(temperature[2], st.temperature[g]);
+  }
+  if (!st.temperature.empty()) {
+    temperature[1] = -temperature[1];
+    comm.sum(temperature, 1);
+    comm.max(temperature + 1, 2);
+    temperature[1] = -temperature[1];
+  }
+
   std::size_t c = 0;
   for (double v : {st.t, dt, e.kinetic, e.internal, e.plastic, e.external, e.contact, out.energy_error, s.friction_work,
                    s.contacts, s.point_contacts, worst[0], out.kinetic_internal, s.volume / volume0_ - 1, worst[1],
                    s.update_work, s.spring_energy, worst[2], s.viscous_work})
     row_[c++] = v;
+  if (!st.temperature.empty())
+    for (double v : {temperature[0] / volume0_, temperature[1], temperature[2]}) row_[c++] = v;
   for (std::size_t w = 0; w < walls; ++w) row_[c++] = sums_[kSumCount + w];
   for (std::size_t d = 0; d < dies.size(); ++d) {
     const Die& die = dies.die(d);

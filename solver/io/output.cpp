@@ -17,8 +17,9 @@
 namespace rk {
 namespace {
 
-// weight, eq_plastic_strain, von_mises, pressure, Cauchy stress (xx, yy, zz, xy, yz, zx)
-constexpr int kProjected = 10;
+// weight, eq_plastic_strain, von_mises, pressure, Cauchy stress (xx, yy, zz, xy, yz, zx), and the
+// temperature where the material has one
+constexpr int kProjected = 11;
 
 // Cauchy von Mises stress and pressure of a point from its Kirchhoff stress (sigma = tau / J).
 void cauchy_measures(const double* tau, double J, double& von_mises, double& pressure) {
@@ -33,7 +34,8 @@ void cauchy_measures(const double* tau, double J, double& von_mises, double& pre
 
 ResultWriter::ResultWriter(const std::string& case_dir, const Model& md, const std::string& scene_hash,
                            std::int64_t resume_frames)
-    : case_dir_(case_dir), scene_hash_(scene_hash), exchange_(md, kProjected), partial_(kProjected * md.n) {
+    : case_dir_(case_dir), scene_hash_(scene_hash), projected_(md.heat_capacity > 0 ? kProjected : kProjected - 1),
+      exchange_(md, projected_), partial_(std::size_t(projected_) * md.n) {
   const std::string dir = result_frame_dir(case_dir, md.rank);
   std::filesystem::create_directories(dir);
   frames_ = int(std::max<std::int64_t>(resume_frames, 0));
@@ -51,35 +53,39 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
   // value lies within its points' (a plastic strain is never negative, a von Mises stress never above
   // the points' flow stress; the RK values N_I themselves can be negative). Summed over ranks in fixed
   // point so every copy and every rank count gives the same value.
-  std::vector<double> q(kProjected * md.m);
+  const int np = projected_;
+  std::vector<double> q(std::size_t(np) * md.m);
   double bound[kProjected] = {};
   for (std::size_t g = 0; g < md.m; ++g) {
     double vm, p;
     cauchy_measures(&st.tau[6 * g], st.total_J(g), vm, p);
     const double* tau = &st.tau[6 * g];
     const double J = st.total_J(g);
-    const double values[kProjected] = {1.0, st.ep[g], vm, p, tau[0] / J, tau[1] / J, tau[2] / J, tau[3] / J, tau[4] / J, tau[5] / J};
+    const double values[kProjected] = {1.0,        st.ep[g],   vm,         p,          tau[0] / J, tau[1] / J,
+                                       tau[2] / J, tau[3] / J, tau[4] / J, tau[5] / J,
+                                       st.temperature.empty() ? 0.0 : st.temperature[g]};
     double nmax = 0;
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) nmax = std::max(nmax, std::abs(md.N[k]));
-    for (int c = 0; c < kProjected; ++c) {
-      q[kProjected * g + c] = values[c];
+    for (int c = 0; c < np; ++c) {
+      q[std::size_t(np) * g + c] = values[c];
       bound[c] = std::max(bound[c], md.weight[g] * nmax * std::abs(values[c]));
     }
   }
-  comm.max(bound, kProjected);
+  comm.max(bound, np);
   FixedScale scale[kProjected];
   if (headroom_ < 0) headroom_ = force_headroom(md, 1, 0, comm);
-  for (int c = 0; c < kProjected; ++c) scale[c] = FixedScale::for_bound(bound[c], headroom_);
+  for (int c = 0; c < np; ++c) scale[c] = FixedScale::for_bound(bound[c], headroom_);
   std::fill(partial_.begin(), partial_.end(), Fixed(0));
   for (std::size_t g = 0; g < md.m; ++g)
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
-      for (int c = 0; c < kProjected; ++c)
-        partial_[kProjected * std::size_t(md.nbr[k]) + c] += scale[c].fixed(md.weight[g] * std::max(md.N[k], 0.0) * q[kProjected * g + c]);
+      for (int c = 0; c < np; ++c)
+        partial_[std::size_t(np) * std::size_t(md.nbr[k]) + c] +=
+            scale[c].fixed(md.weight[g] * std::max(md.N[k], 0.0) * q[std::size_t(np) * g + c]);
   exchange_.sum(partial_);
 
   // Displacements: the material's, u^h(X_I) = sum_J N_J(X_I) d_J (RK coefficients are not values).
   std::vector<std::int64_t> gid;
-  std::vector<double> x, u, v, ep, vm, pr, sigma;
+  std::vector<double> x, u, v, ep, vm, pr, sigma, temperature;
   for (std::size_t I = 0; I < md.n; ++I) {
     if (!md.owned[I]) continue;
     gid.push_back(md.global_id[I]);
@@ -90,12 +96,13 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
       u.push_back(uh[i]);
       v.push_back(velocity[3 * I + i]);
     }
-    const double w = scale[0].real(partial_[kProjected * I]);
-    auto value = [&](int c) { return w > 0 ? scale[c].real(partial_[kProjected * I + c]) / w : 0.0; };
+    const double w = scale[0].real(partial_[std::size_t(np) * I]);
+    auto value = [&](int c) { return w > 0 ? scale[c].real(partial_[std::size_t(np) * I + c]) / w : 0.0; };
     ep.push_back(value(1));
     vm.push_back(value(2));
     pr.push_back(value(3));
-    for (int c = 4; c < kProjected; ++c) sigma.push_back(value(c));
+    for (int c = 4; c < 10; ++c) sigma.push_back(value(c));
+    if (np > 10) temperature.push_back(value(10));
   }
   const std::string path = result_frame_path(case_dir_, md.rank, frames_), tmp = path + ".tmp";
   try {
@@ -113,6 +120,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     static_assert(std::size(fields) == std::size(kFrameFields));
     for (std::size_t k = 0; k < std::size(fields); ++k)
       f.write(g + kFrameFields[k].name, *fields[k], std::size_t(kFrameFields[k].components));
+    if (np > 10) f.write(g + kTemperatureField.name, temperature);
     f.close();
   } catch (const Error&) {  // no partial frame is left behind
     std::error_code ignored;

@@ -28,6 +28,7 @@ class ResultWriter {
  private:
   std::string case_dir_, scene_hash_;
   int frames_ = 0;
+  int projected_;  // point quantities spread to the particles (with the temperature or without)
   OverlapExchange exchange_;
   std::vector<Fixed> partial_;
   int headroom_ = -1;  // of the projection sums (force_headroom), set at the first frame

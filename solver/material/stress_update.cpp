@@ -22,7 +22,9 @@ void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n,
     for (int i = 0; i < 9; ++i) b.F.v[i][l] = ratio[l] * st.F[9 * p + i];
     for (int i = 0; i < 6; ++i) b.cp_inv.v[i][l] = st.cp_inv[6 * p + i];
     b.ep[l] = st.ep[p];
+    if (!st.temperature.empty()) b.T[l] = st.temperature[p];
   }
+  b.dt = st.dt_half;  // the increment from the last state took the last step (0 at the start: no rate)
 }
 
 // P = tau_eff F^{-T} = tau_eff cof(F) / det F for the points g .. g+n, and their force bounds.
@@ -96,6 +98,8 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
         st.ep[p] = b.ep[l];
         st.psi[p] = b.psi[l];
         st.wp[p] += b.dissipation[l];
+        // the plastic work's heat, from the increment's end (adiabatic: no conduction yet)
+        if (!st.temperature.empty()) st.temperature[p] += md.taylor_quinney * b.dissipation[l] / md.heat_capacity;
         health.plastic += b.plastic[l] != 0;
         wp += md.weight[p] * (t[0] + t[1] + t[2]) / 3;
         wJ += md.weight[p] * st.total_J(p);
