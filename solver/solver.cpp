@@ -50,6 +50,7 @@ class Simulation {
 
  private:
   // the phases of a step, in the order run() calls them
+  bool update_due() const;
   void reference_update();
   bool checkpoint_due(bool last) const;
   void checkpoint();
@@ -90,7 +91,6 @@ class Simulation {
   WriteLastFrame last_frame_;
   PhaseTimer timer_;
   PressureBound pressure_bound_;
-  double dt0_ = 0;
   int headroom_ = 0;  // of the fixed-point force sums
   std::vector<double> v_old_;  // v^{n-1/2} during the step (vbar at an output)
   std::int64_t first_step_ = 0;
@@ -99,8 +99,7 @@ class Simulation {
   StableStep stable_{};
   double contact_bound_ = 0;
   bool healthy_ = true;
-  StepLimits limits_;
-  bool update_due_ = false, checkpoint_due_ = false, stop_requested_ = false;
+  StepLimits limits_;  // the last step's: they decide the next step's reference update, checkpoint, stop
   double last_checkpoint_wall_ = 0;
   double plastic_updates_ = 0, point_updates_ = 0;  // this run's stress updates, and those that were plastic
   double max_ebc_error_ = 0;
@@ -112,9 +111,9 @@ void Simulation::run() {
     timer_.start();
     // the end within 1e-12 of it: the round-off of the summed steps
     const bool last = st_.t >= scene_.time.end * (1 - 1e-12);
-    if (update_due_) reference_update();        // the current configuration becomes the reference
+    if (update_due()) reference_update();       // the current configuration becomes the reference
     if (checkpoint_due(last)) checkpoint();     // t^n, v^{n-1/2}
-    if (stop_requested_) stop_on_interrupt();   // a rank was interrupted: every rank stops here
+    if (limits_.interrupted) stop_on_interrupt();  // a rank was interrupted: every rank stops here
     deformation_gradient();                     // F = I + sum_I d_I (x) grad_X N_I at the points
     stress_update();                            // bulk viscosity, J2 return map with F-bar, P = tau F^-T
     contact();                                  // the dies', walls' and symmetry planes' forces
@@ -134,21 +133,25 @@ void Simulation::run() {
   }
 }
 
+bool Simulation::update_due() const {
+  const double strain = scene_.reference_updates.strain;
+  return strain > 0 && limits_.strain_since_update > strain;
+}
+
 void Simulation::reference_update() {
   const Projection project = [&](std::size_t I, double* x) { ebc_->project(md_, I, st_.t, x); };
   collectively(comm_, [&] { return update_reference(md_, st_, scene_, comm_, project), 0; });
   rebind();
-  update_due_ = false;
   timer_.stop(kReferenceUpdate);
 }
 
 bool Simulation::checkpoint_due(bool last) const {
   const auto every = scene_.output.checkpoint_steps;
-  return (every > 0 && st_.step % every == 0 && st_.step > first_step_) || last || checkpoint_due_;
+  return (every > 0 && st_.step % every == 0 && st_.step > first_step_) || last || limits_.checkpoint_clock ||
+         limits_.interrupted;  // a stop writes a checkpoint first
 }
 
 void Simulation::checkpoint() {
-  checkpoint_due_ = false;
   last_checkpoint_wall_ = comm_.wtime();
   clock_.frames = results_->frames();
   collectively(comm_, [&] { return write_checkpoint(opt_.case_dir, md_, st_, clock_, dies_->totals()), 0; });
@@ -203,9 +206,6 @@ void Simulation::time_step() {
   limits_.interrupted = g_interrupted != 0;
   limits_.reduce(comm_);
   clock_.max_pressure_ratio = std::max(clock_.max_pressure_ratio, limits_.pressure_ratio);
-  stop_requested_ = limits_.interrupted;
-  checkpoint_due_ = limits_.checkpoint_clock || stop_requested_;
-  update_due_ = update_strain > 0 && limits_.strain_since_update > update_strain;
   timer_.stop(kTimeStep);
 }
 
@@ -342,17 +342,17 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   init_bulk_viscosity(md_, st_, scene_.bulk_viscosity);
   if (scene_.material.thermal()) st_.temperature.assign(md_.m, scene_.initial.temperature);
   compute_deformation_gradient(md_, st_);
-  dt0_ = stable_time_step(md_, st_, scene_.time.cfl).dt;
-  comm.min(&dt0_, 1);
-  if (scene_.time.mass_scaling_dt > dt0_) {  // quasi-static forming: scale the density up
-    const double factor = std::pow(scene_.time.mass_scaling_dt / dt0_, 2);
+  double dt0 = stable_time_step(md_, st_, scene_.time.cfl).dt;
+  comm.min(&dt0, 1);
+  if (scene_.time.mass_scaling_dt > dt0) {  // quasi-static forming: scale the density up
+    const double factor = std::pow(scene_.time.mass_scaling_dt / dt0, 2);
     scale_mass(md_, factor);
-    dt0_ *= std::sqrt(factor);
+    dt0 *= std::sqrt(factor);
   }
   ebc_ = collectively(comm, [&] { return std::make_unique<EssentialBcs>(md_, scene_, comm); });
   ebc_->apply(md_, st_, 0.0, 0.0, 0.0, st_.v);  // initial velocities that meet the conditions' rates
   dies_ = std::make_unique<DieContact>(md_, scene_, md_.dies);
-  clock_.dt_stable = dt0_;  // the last unclipped global stable step: sets the penalty stiffness
+  clock_.dt_stable = dt0;  // the last unclipped global stable step: sets the penalty stiffness
   clock_.kinetic0 = compute_energies(md_, st_, st_.v, comm).kinetic;
   if (opt.restart) {
     const std::string path = restart_checkpoint(opt.case_dir, comm);
@@ -376,7 +376,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   history_ = std::make_unique<History>(opt.case_dir, scene_, md_, opt.restart ? st_.t : -1.0, comm);
 
   HealthScales scales;
-  scales.dt0 = dt0_;
+  scales.dt0 = dt0;
   for (int d = 0; d < 3; ++d) scales.part_lo[d] = 1e300, scales.part_hi[d] = -1e300;
   for (std::size_t I = 0; I < md_.n; ++I)
     for (int d = 0; d < 3; ++d)

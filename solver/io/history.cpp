@@ -14,7 +14,8 @@ namespace {
 constexpr double HistorySums::* kSumFields[] = {
     &HistorySums::contacts,     &HistorySums::point_contacts, &HistorySums::spring_energy,
     &HistorySums::friction_work, &HistorySums::contact_work,  &HistorySums::volume,
-    &HistorySums::ebc_work,     &HistorySums::update_work,    &HistorySums::viscous_work};
+    &HistorySums::ebc_work,     &HistorySums::update_work,    &HistorySums::viscous_work,
+    &HistorySums::heat};
 constexpr std::size_t kSumCount = std::size(kSumFields);
 constexpr std::size_t kPerDie = 4;  // fx, fy, fz, press work
 
@@ -73,6 +74,11 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
   s.update_work = st.update_work;
   s.viscous_work = st.viscous_work;
   for (std::size_t g = 0; g < md.m; ++g) s.volume += md.weight[g] * st.total_J(g);
+  double coolest = 1e300, hottest = -1e300;  // empty without a temperature
+  for (std::size_t g = 0; g < st.temperature.size(); ++g) {
+    s.heat += md.weight[g] * st.temperature[g];
+    coolest = std::min(coolest, st.temperature[g]), hottest = std::max(hottest, st.temperature[g]);
+  }
   const std::size_t walls = scene_.rigid_walls.size(), die0 = kSumCount + walls, face0 = die0 + kPerDie * dies.size();
   std::fill(sums_.begin(), sums_.end(), 0.0);
   for (std::size_t w = 0; w < walls; ++w) sums_[kSumCount + w] = dies.wall_force(w);
@@ -92,8 +98,8 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
   for (std::size_t k = 0; k < kSumCount; ++k) sums_[k] = s.*kSumFields[k];
   comm.sum(sums_.data(), int(sums_.size()));
   for (std::size_t k = 0; k < kSumCount; ++k) s.*kSumFields[k] = sums_[k];
-  double worst[3] = {penetration, ebc.max_error(md, st, st.t), dies.symmetry_depth()};
-  comm.max(worst, 3);
+  double worst[5] = {penetration, ebc.max_error(md, st, st.t), dies.symmetry_depth(), -coolest, hottest};
+  comm.max(worst, 5);
   out.ebc_error = worst[1];
 
   // The balance of the part (docs/scene.md, "Energy"): KE + internal = KE0 + W_ext + W_contact, with
@@ -107,26 +113,13 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
   out.energy_error = energy_error(balance, kinetic0);
   out.kinetic_internal = e.internal > 0 ? e.kinetic / e.internal : 0.0;
 
-  double temperature[3] = {0, 1e300, -1e300};  // sum_g w_g T_g, min, max
-  for (std::size_t g = 0; g < st.temperature.size(); ++g) {
-    temperature[0] += md.weight[g] * st.temperature[g];
-    temperature[1] = std::min(temperature[1], st.temperature[g]);
-    temperature[2] = std::max(temperature[2], st.temperature[g]);
-  }
-  if (!st.temperature.empty()) {
-    temperature[1] = -temperature[1];
-    comm.sum(temperature, 1);
-    comm.max(temperature + 1, 2);
-    temperature[1] = -temperature[1];
-  }
-
   std::size_t c = 0;
   for (double v : {st.t, dt, e.kinetic, e.internal, e.plastic, e.external, e.contact, out.energy_error, s.friction_work,
                    s.contacts, s.point_contacts, worst[0], out.kinetic_internal, s.volume / volume0_ - 1, worst[1],
                    s.update_work, s.spring_energy, worst[2], s.viscous_work})
     row_[c++] = v;
   if (!st.temperature.empty())
-    for (double v : {temperature[0] / volume0_, temperature[1], temperature[2]}) row_[c++] = v;
+    for (double v : {s.heat / volume0_, -worst[3], worst[4]}) row_[c++] = v;
   for (std::size_t w = 0; w < walls; ++w) row_[c++] = sums_[kSumCount + w];
   for (std::size_t d = 0; d < dies.size(); ++d) {
     const Die& die = dies.die(d);

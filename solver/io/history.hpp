@@ -35,6 +35,7 @@ struct HistorySums {
   double volume = 0;        // sum_g w_g J_g, the part's current volume (m^3)
   double ebc_work = 0;      // work of the essential BCs' reactions this step
   double update_work = 0, viscous_work = 0;
+  double heat = 0;          // sum_g w_g T_g (K m^3), with a temperature
 };
 
 // What a row tells the time loop.

@@ -20,6 +20,7 @@ namespace {
 // weight, eq_plastic_strain, von_mises, pressure, Cauchy stress (xx, yy, zz, xy, yz, zx), and the
 // temperature where the material has one
 constexpr int kProjected = 11;
+constexpr int kStress = 4, kTemperature = 10;  // the first stress component's column, the temperature's
 
 // Cauchy von Mises stress and pressure of a point from its Kirchhoff stress (sigma = tau / J).
 void cauchy_measures(const double* tau, double J, double& von_mises, double& pressure) {
@@ -34,7 +35,7 @@ void cauchy_measures(const double* tau, double J, double& von_mises, double& pre
 
 ResultWriter::ResultWriter(const std::string& case_dir, const Model& md, const std::string& scene_hash,
                            std::int64_t resume_frames)
-    : case_dir_(case_dir), scene_hash_(scene_hash), projected_(md.heat_capacity > 0 ? kProjected : kProjected - 1),
+    : case_dir_(case_dir), scene_hash_(scene_hash), projected_(md.heat_capacity > 0 ? kProjected : kTemperature),
       exchange_(md, projected_), partial_(std::size_t(projected_) * md.n) {
   const std::string dir = result_frame_dir(case_dir, md.rank);
   std::filesystem::create_directories(dir);
@@ -101,8 +102,8 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     ep.push_back(value(1));
     vm.push_back(value(2));
     pr.push_back(value(3));
-    for (int c = 4; c < 10; ++c) sigma.push_back(value(c));
-    if (np > 10) temperature.push_back(value(10));
+    for (int c = kStress; c < kStress + 6; ++c) sigma.push_back(value(c));
+    if (np > kTemperature) temperature.push_back(value(kTemperature));
   }
   const std::string path = result_frame_path(case_dir_, md.rank, frames_), tmp = path + ".tmp";
   try {
@@ -120,7 +121,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     static_assert(std::size(fields) == std::size(kFrameFields));
     for (std::size_t k = 0; k < std::size(fields); ++k)
       f.write(g + kFrameFields[k].name, *fields[k], std::size_t(kFrameFields[k].components));
-    if (np > 10) f.write(g + kTemperatureField.name, temperature);
+    if (np > kTemperature) f.write(g + kTemperatureField.name, temperature);
     f.close();
   } catch (const Error&) {  // no partial frame is left behind
     std::error_code ignored;

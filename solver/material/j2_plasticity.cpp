@@ -62,16 +62,16 @@ void set_lane(Sym& a, int l, const Eigen::Matrix3d& m) {
 
 // Johnson-Cook's return for one point: q - 3G dg = sigma_y(ep + dg, dg / dt, T). The residual falls
 // strictly with dg (sigma_y grows with strain and rate), and at dg0 = (q - sigma_y(ep, 0, T)) / 3G it
-// is <= 0, so the root lies in [0, dg0]: Newton in log dgamma (from dg0: 6.4 iterations a point on
-// average on the Johnson-Cook Taylor bar, against 10 in dgamma), kept in the bracket by bisection.
-double johnson_cook_return(const J2Params& p, double q, double ep, double T, double dt) {
+// is <= 0, so the root lies in [0, dg0]: Newton in log dgamma from dg0, kept in the bracket by
+// bisection (docs/decisions.md, "Johnson-Cook": 6.8 iterations a return on the Johnson-Cook Taylor bar).
+double johnson_cook_return(const J2Params& p, double q, double ep, double thermal, double dt) {
   double y, h, hr;
-  p.flow(ep, 0.0, T, y, h, hr);
+  p.flow_at(ep, 0.0, thermal, y, h, hr);
   double lo = 0, hi = (q - y) / (3 * p.shear), dg = hi;
   // 100 iterations only guard the loop: the bracket halves at least every other one
   for (int it = 0; it < 100; ++it) {
     const double rate = dt > 0 ? dg / dt : 0.0;
-    p.flow(ep + dg, rate, T, y, h, hr);
+    p.flow_at(ep + dg, rate, thermal, y, h, hr);
     const double r = q - 3 * p.shear * dg - y;
     if (std::abs(r) <= 1e-15 * q) break;  // at the round-off of q
     (r > 0 ? lo : hi) = dg;
@@ -99,10 +99,11 @@ Lane return_map(const J2Params& p, Lane q, J2Batch& b) {
   if (p.johnson_cook) {
     for (int l = 0; l < kLanes; ++l) {
       double y, h, hr;
-      p.flow(b.ep[l], 0.0, b.T[l], y, h, hr);
+      const double thermal = p.thermal_factor(b.T[l]);
+      p.flow_at(b.ep[l], 0.0, thermal, y, h, hr);
       if (!(q[l] > y)) continue;
-      const double dg = johnson_cook_return(p, q[l], b.ep[l], b.T[l], b.dt);
-      p.flow(b.ep[l] + dg, b.dt > 0 ? dg / b.dt : 0.0, b.T[l], y, h, hr);
+      const double dg = johnson_cook_return(p, q[l], b.ep[l], thermal, b.dt);
+      p.flow_at(b.ep[l] + dg, b.dt > 0 ? dg / b.dt : 0.0, thermal, y, h, hr);
       dgamma[l] = dg;
       b.ep[l] += dg;
       b.plastic[l] = -1;
@@ -132,13 +133,16 @@ Lane return_map(const J2Params& p, Lane q, J2Batch& b) {
 
 }  // namespace
 
-void J2Params::flow(double ep, double rate, double T, double& y, double& dy_dep, double& dy_drate) const {
-  const double strain = yield0 + jc_b * std::pow(ep, jc_n);
-  const double strain_slope = ep > 0 ? jc_b * jc_n * std::pow(ep, jc_n - 1) : (jc_n < 1 ? INFINITY : jc_b * jc_n);
-  const double fast = rate > jc_rate0;  // below the reference rate the law is quasi-static
-  const double rate_factor = fast ? 1 + jc_c * std::log(rate / jc_rate0) : 1.0;
+double J2Params::thermal_factor(double T) const {
   const double homologous = (T - t_room) / (t_melt - t_room);
-  const double thermal = homologous <= 0 ? 1.0 : homologous >= 1 ? 0.0 : 1 - std::pow(homologous, jc_m);
+  return homologous <= 0 ? 1.0 : homologous >= 1 ? 0.0 : 1 - std::pow(homologous, jc_m);
+}
+
+void J2Params::flow_at(double ep, double rate, double thermal, double& y, double& dy_dep, double& dy_drate) const {
+  const double hard = jc_b * std::pow(ep, jc_n), strain = yield0 + hard;
+  const double strain_slope = ep > 0 ? jc_n * hard / ep : (jc_n < 1 ? INFINITY : jc_b * jc_n);
+  const bool fast = rate > jc_rate0;  // below the reference rate the law is quasi-static
+  const double rate_factor = fast ? 1 + jc_c * std::log(rate / jc_rate0) : 1.0;
   y = strain * rate_factor * thermal;
   dy_dep = strain_slope * rate_factor * thermal;
   dy_drate = fast ? strain * thermal * jc_c / rate : 0.0;

@@ -45,8 +45,14 @@ struct J2Params {
     if (johnson_cook) return yield0 + jc_b * std::pow(ep, jc_n);
     return power_law ? strength * std::pow(eps0 + ep, exponent) : yield0 + hardening * ep;
   }
-  // Johnson-Cook's flow stress at (ep, rate, T) and its slopes d/d ep and d/d rate.
-  void flow(double ep, double rate, double T, double& y, double& dy_dep, double& dy_drate) const;
+  // Johnson-Cook's flow stress at (ep, rate, T) and its slopes d/d ep and d/d rate; flow_at takes
+  // the thermal factor 1 - T*^m (thermal_factor: 1 below the room temperature, 0 molten), which the
+  // return computes once for its iterations.
+  double thermal_factor(double T) const;
+  void flow_at(double ep, double rate, double thermal, double& y, double& dy_dep, double& dy_drate) const;
+  void flow(double ep, double rate, double T, double& y, double& dy_dep, double& dy_drate) const {
+    flow_at(ep, rate, thermal_factor(T), y, dy_dep, dy_drate);
+  }
   // sigma_y and d sigma_y / d ep together (one pow for the power law)
   void yield_and_slope(double ep, double& y, double& h) const {
     if (!power_law) {

@@ -1,10 +1,15 @@
 """rkpost with damaged results: one rank's frame whose bytes were changed on disk is
 reported, naming the file and the dataset, and skipped; a frame file missing on a rank is reported
 and skipped; every other frame is still merged and rkpost exits 0. rksolve writes each frame whole
-(temporary name, fsync, rename), so a killed run leaves no half-written frame file behind."""
+(temporary name, fsync, rename), so a killed run leaves no half-written frame file behind. Results
+of another case, and a frame, solve.json or history.csv of another format, are refused with the file
+named and a non-zero exit."""
+import json
 import shutil
 import subprocess
 import xml.etree.ElementTree as ET
+
+import h5py
 
 import rkcase
 
@@ -48,10 +53,6 @@ rkcase.check(p.returncode != 0 and len(errors) == 1 and "computed on another sce
 # Results of another version of rksolve (the contracts of shared/result_frame.hpp and
 # shared/run_summary.hpp carry a format): a frame or a solve.json of another format is refused with
 # its file named, never read under the wrong layout.
-import json  # noqa: E402
-
-import h5py  # noqa: E402
-
 with h5py.File(case / "results" / "rank_0001" / "frame_00001.h5", "r+") as f:
     f.attrs["format"] = 0
 p = tools.post(case, expect_ok=False)

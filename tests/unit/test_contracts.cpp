@@ -2,7 +2,8 @@
 // - solve.json: what the writer writes, the reader reads back field by field; a file of another
 //   format (or none: an older rksolve) is refused with the file's name and both formats;
 // - history.csv: every column of every shipped scene has its unit; the scalars come first, then
-//   per die its six columns in order, so a reader finds the press force beside its stroke.
+//   per die its six columns in order, so a reader finds the press force beside its stroke; a
+//   Johnson-Cook scene has its three temperature columns (K) after the scalars.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -56,7 +57,8 @@ TEST(Contracts, RunSummaryOfAnotherFormatIsRefused) {
 TEST(Contracts, EveryHistoryColumnHasItsUnit) {
   const std::vector<std::string> fractions = {"energy_error", "kinetic_internal_ratio", "volume_change"};
   for (const char* scene : {"upsetting/scene_friction.yaml", "taylor_bar/scene.yaml", "back_extrusion/scene.yaml",
-                            "elastic_bar/scene_walls.yaml", "beam/scene.yaml", "wheel_forging/scene.yaml"}) {
+                            "elastic_bar/scene_walls.yaml", "beam/scene.yaml", "wheel_forging/scene.yaml",
+                            "taylor_bar/scene_johnson_cook.yaml"}) {
     const auto columns = rk::history_columns(rk::load_scene(kSource + "/geometry/" + scene, {}));
     ASSERT_GE(columns.size(), std::size(rk::kHistoryScalars)) << scene;
     for (std::size_t k = 0; k < std::size(rk::kHistoryScalars); ++k) EXPECT_EQ(columns[k], rk::kHistoryScalars[k].name);
@@ -74,6 +76,12 @@ TEST(Contracts, EveryHistoryColumnHasItsUnit) {
   EXPECT_EQ(rk::history_unit("die.stroke"), "m");
   EXPECT_EQ(rk::history_unit("time"), "s");
   EXPECT_EQ(rk::history_unit("contacts"), "count");
+  const auto hot = rk::history_columns(rk::load_scene(kSource + "/geometry/taylor_bar/scene_johnson_cook.yaml", {}));
+  const std::size_t k = std::size(rk::kHistoryScalars);
+  ASSERT_GE(hot.size(), k + 3);
+  EXPECT_EQ(std::vector<std::string>(hot.begin() + k, hot.begin() + k + 3),
+            (std::vector<std::string>{"temperature_mean", "temperature_min", "temperature_max"}));
+  EXPECT_EQ(rk::history_unit("temperature_max"), "K");
 }
 
 }  // namespace
