@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <map>
+#include <array>
 #include <sstream>
 #include <unordered_map>
 
@@ -146,6 +146,74 @@ VolumeMesh mesh_cad(const MeshRequest& r) {
   } catch (const std::string& e) {  // gmsh 4.8 throws std::string
     throw Error(r.cad + ": gmsh failed: " + e);
   }
+}
+
+const std::vector<std::vector<int>>& cell_faces(int nodes_per_cell) {
+  static const std::vector<std::vector<int>> hex{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                                 {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  static const std::vector<std::vector<int>> tet{{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  return nodes_per_cell == 8 ? hex : tet;
+}
+
+std::vector<std::vector<std::uint8_t>> boundary_face_flags(const VolumeMesh& mesh) {
+  struct Key {
+    std::array<std::int32_t, 4> nodes;
+    std::int32_t cell, face;
+  };
+  std::vector<Key> keys;
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
+    const std::int32_t* nodes = &mesh.cell_nodes[mesh.cell_offsets[c]];
+    const auto& faces = cell_faces(mesh.cell_offsets[c + 1] - mesh.cell_offsets[c]);
+    for (std::size_t k = 0; k < faces.size(); ++k) {
+      Key key{{-1, -1, -1, -1}, std::int32_t(c), std::int32_t(k)};
+      for (std::size_t a = 0; a < faces[k].size(); ++a) key.nodes[a] = nodes[faces[k][a]];
+      std::sort(key.nodes.begin(), key.nodes.end());
+      keys.push_back(key);
+    }
+  }
+  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) { return a.nodes < b.nodes; });
+  std::vector<std::vector<std::uint8_t>> boundary(mesh.cell_count());
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c)
+    boundary[c].assign(cell_faces(mesh.cell_offsets[c + 1] - mesh.cell_offsets[c]).size(), 0);
+  for (std::size_t k = 0; k < keys.size();) {
+    std::size_t e = k + 1;
+    while (e < keys.size() && keys[e].nodes == keys[k].nodes) ++e;
+    if (e - k == 1) boundary[keys[k].cell][keys[k].face] = 1;
+    k = e;
+  }
+  return boundary;
+}
+
+BoundaryFaces boundary_faces(const VolumeMesh& mesh) {
+  const auto flags = boundary_face_flags(mesh);
+  BoundaryFaces out;
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
+    const std::int32_t* n = &mesh.cell_nodes[std::size_t(mesh.cell_offsets[c])];
+    const int count = mesh.cell_offsets[c + 1] - mesh.cell_offsets[c];
+    const auto& faces = cell_faces(count);
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      if (!flags[c][f]) continue;
+      std::vector<std::int32_t> nodes;
+      for (int a : faces[f]) nodes.push_back(n[a]);
+      // outward: the face's normal points away from the cell's centre (whatever the cell's handedness)
+      double centre[3] = {0, 0, 0}, mid[3] = {0, 0, 0}, normal[3] = {0, 0, 0};
+      for (int a = 0; a < count; ++a)
+        for (int i = 0; i < 3; ++i) centre[i] += mesh.X[3 * std::size_t(n[a]) + i] / count;
+      for (std::size_t a = 0; a < nodes.size(); ++a) {
+        const double* p = &mesh.X[3 * std::size_t(nodes[a])];
+        const double* q = &mesh.X[3 * std::size_t(nodes[(a + 1) % nodes.size()])];
+        for (int i = 0; i < 3; ++i) mid[i] += p[i] / double(nodes.size());
+        normal[0] += p[1] * q[2] - p[2] * q[1], normal[1] += p[2] * q[0] - p[0] * q[2], normal[2] += p[0] * q[1] - p[1] * q[0];
+      }
+      double side = 0;
+      for (int i = 0; i < 3; ++i) side += normal[i] * (mid[i] - centre[i]);
+      if (side < 0) std::reverse(nodes.begin(), nodes.end());
+      out.face_nodes.insert(out.face_nodes.end(), nodes.begin(), nodes.end());
+      out.face_offsets.push_back(std::int32_t(out.face_nodes.size()));
+      out.cell.push_back(std::int32_t(c));
+    }
+  }
+  return out;
 }
 
 double median_edge(const VolumeMesh& mesh) {

@@ -28,6 +28,21 @@ struct MeshRequest {
 // (as with `gmsh -setnumber h ...`); other CAD is meshed with all-hex subdivision at that spacing.
 VolumeMesh mesh_cad(const MeshRequest& request);
 
+// The faces of a cell (gmsh node order: 8 a hexahedron, 4 a tetrahedron), nodes in cyclic order.
+const std::vector<std::vector<int>>& cell_faces(int nodes_per_cell);
+
+// Per cell, per face of cell_faces: 1 where no other cell has the face's node set (the boundary).
+std::vector<std::vector<std::uint8_t>> boundary_face_flags(const VolumeMesh& mesh);
+
+// The faces of the cells that no other cell shares: the solid's boundary, each as its nodes in
+// counter-clockwise order seen from outside (CSR: face_offsets[f] .. face_offsets[f + 1] in
+// face_nodes), with the cell it bounds.
+struct BoundaryFaces {
+  std::vector<std::int32_t> face_offsets{0}, face_nodes, cell;
+  std::size_t size() const { return cell.size(); }
+};
+BoundaryFaces boundary_faces(const VolumeMesh& mesh);
+
 // The spacing the mesh achieved: the median length of its cells' edges (metres), to set beside the
 // asked discretization.spacing (a CAD's own features can force a finer mesh).
 double median_edge(const VolumeMesh& mesh);

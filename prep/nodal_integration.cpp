@@ -12,14 +12,6 @@ namespace {
 
 using P3 = std::array<double, 3>;
 
-// Faces of a cell (gmsh node order), nodes in cyclic order; triangles repeat no node (size 3).
-const std::vector<std::vector<int>>& cell_faces(int nodes_per_cell) {
-  static const std::vector<std::vector<int>> hex{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                                 {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-  static const std::vector<std::vector<int>> tet{{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
-  return nodes_per_cell == 8 ? hex : tet;
-}
-
 P3 centre(const VolumeMesh& mesh, const std::int32_t* nodes, const std::vector<int>& which) {
   P3 c{0, 0, 0};
   for (int a : which)
@@ -64,41 +56,11 @@ void add_quad(const std::array<P3, 4>& p, const P3& outward, std::int32_t plus, 
     }
 }
 
-// The faces that lie on the domain boundary: (cell, face) pairs whose node set no other cell has.
-std::vector<std::vector<std::uint8_t>> boundary_faces(const VolumeMesh& mesh) {
-  struct Key {
-    std::array<std::int32_t, 4> nodes;
-    std::int32_t cell, face;
-  };
-  std::vector<Key> keys;
-  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
-    const std::int32_t* nodes = &mesh.cell_nodes[mesh.cell_offsets[c]];
-    const auto& faces = cell_faces(mesh.cell_offsets[c + 1] - mesh.cell_offsets[c]);
-    for (std::size_t k = 0; k < faces.size(); ++k) {
-      Key key{{-1, -1, -1, -1}, std::int32_t(c), std::int32_t(k)};
-      for (std::size_t a = 0; a < faces[k].size(); ++a) key.nodes[a] = nodes[faces[k][a]];
-      std::sort(key.nodes.begin(), key.nodes.end());
-      keys.push_back(key);
-    }
-  }
-  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) { return a.nodes < b.nodes; });
-  std::vector<std::vector<std::uint8_t>> boundary(mesh.cell_count());
-  for (std::size_t c = 0; c < mesh.cell_count(); ++c)
-    boundary[c].assign(cell_faces(mesh.cell_offsets[c + 1] - mesh.cell_offsets[c]).size(), 0);
-  for (std::size_t k = 0; k < keys.size();) {
-    std::size_t e = k + 1;
-    while (e < keys.size() && keys[e].nodes == keys[k].nodes) ++e;
-    if (e - k == 1) boundary[keys[k].cell][keys[k].face] = 1;
-    k = e;
-  }
-  return boundary;
-}
-
 }  // namespace
 
 DualFaces dual_faces(const VolumeMesh& mesh) {
   DualFaces f;
-  const auto boundary = boundary_faces(mesh);
+  const auto boundary = boundary_face_flags(mesh);
   for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
     const std::int32_t* nodes = &mesh.cell_nodes[mesh.cell_offsets[c]];
     const int per = mesh.cell_offsets[c + 1] - mesh.cell_offsets[c];

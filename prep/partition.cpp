@@ -80,6 +80,7 @@ std::vector<Subdomain> build_subdomains(const SubdomainRequest& r) {
     local[q] = local_particles(request);
   }
 
+  const BoundaryFaces boundary = boundary_faces(r.mesh);
   std::vector<Subdomain> subs(r.ranks);
   std::vector<std::int32_t> local_index(n, -1);
   for (int q = 0; q < r.ranks; ++q) {
@@ -107,6 +108,12 @@ std::vector<Subdomain> build_subdomains(const SubdomainRequest& r) {
         s.cell_nodes.push_back(local_index[r.mesh.cell_nodes[k]]);
       s.cell_node_offsets.push_back(std::int32_t(s.cell_nodes.size()));
     }
+    for (std::size_t f = 0; f < boundary.size(); ++f)  // a boundary face goes with its cell
+      if (r.cell_rank[boundary.cell[f]] == q) {
+        for (auto k = boundary.face_offsets[f]; k < boundary.face_offsets[f + 1]; ++k)
+          s.surface_face_nodes.push_back(local_index[boundary.face_nodes[k]]);
+        s.surface_face_offsets.push_back(std::int32_t(s.surface_face_nodes.size()));
+      }
     std::vector<std::int32_t> point_local(r.disc.point_weight.size(), -1);
     for (auto g : points_of[q]) {
       point_local[g] = std::int32_t(s.point_weight.size());

@@ -15,10 +15,14 @@ std::vector<std::string> history_columns(const Scene& scene) {
   for (const auto& s : kHistoryScalars) c.push_back(s.name);
   if (scene.material.thermal())
     for (const auto& t : kTemperatureColumns) c.push_back(t.name);
+  if (scene.material.conducting())
+    for (const auto& t : kConductionColumns) c.push_back(t.name);
   for (const auto& w : scene.rigid_walls)
     for (const char* q : kWallColumns) c.push_back(w.name + q);
-  for (const auto& d : scene.dies)
+  for (const auto& d : scene.dies) {
     for (const char* q : kDieColumns) c.push_back(d.name + q);
+    if (scene.material.conducting()) c.push_back(d.name + ".heat");
+  }
   for (const auto& f : scene.fixed_faces)
     for (const char* q : kFixedFaceColumns) c.push_back(f.name + q);
   for (const auto& f : scene.prescribed_faces)
@@ -31,8 +35,10 @@ std::string history_unit(const std::string& column) {
     if (column == s.name) return s.unit;
   for (const auto& s : kTemperatureColumns)
     if (column == s.name) return s.unit;
+  for (const auto& s : kConductionColumns)
+    if (column == s.name) return s.unit;
   auto ends = [&](const char* tail) { return column.ends_with(tail); };
-  if (ends(".work")) return "J";
+  if (ends(".work") || ends(".heat")) return "J";
   if (ends(".force") || ends(".fx") || ends(".fy") || ends(".fz")) return "N";
   if (ends(".stroke")) return "m";
   return "-";

@@ -2,8 +2,10 @@
 // a header row of column names, then one row of numbers (%.10g) per history time, SI units, for the
 // modeled part. The columns are named: readers find a column by its name, never by its position.
 // First the run's scalars (kHistoryScalars), then where the material has a temperature its
-// mass-weighted mean, minimum and maximum over the part's points (kTemperatureColumns), then per rigid wall its force along its normal, per die
-// its stroke, press force (along its motion, times force_factor), force components and press work,
+// mass-weighted mean, minimum and maximum over the part's points (kTemperatureColumns), with
+// conduction the heat given to the ambient (kConductionColumns), then per rigid wall its force along
+// its normal, per die its stroke, press force (along its motion, times force_factor), force
+// components, press work and with conduction the heat conducted into it,
 // per fixed face its reaction components, per prescribed face its stroke and reaction components.
 #pragma once
 #include <string>
@@ -29,6 +31,10 @@ inline constexpr HistoryColumn kHistoryScalars[] = {
 
 inline constexpr HistoryColumn kTemperatureColumns[] = {
     {"temperature_mean", "K"}, {"temperature_min", "K"}, {"temperature_max", "K"}};
+
+// With heat conduction (material.conductivity): the heat the part gave the ambient air by convection
+// and radiation, cumulative; and per die (its column DIE.heat) the heat conducted into it.
+inline constexpr HistoryColumn kConductionColumns[] = {{"heat_to_ambient", "J"}};
 
 // The scene's columns in order: the scalars, then its walls', dies' and faces' columns.
 std::vector<std::string> history_columns(const Scene& scene);

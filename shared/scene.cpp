@@ -125,6 +125,7 @@ class Section {
     return x;
   }
 
+  bool given() const { return node_ && !node_.IsNull() && node_.size() > 0; }
   void record(const std::string& key, const std::string& value) { resolved_[key] = value; }
   void record_node(const std::string& key, const YAML::Node& value) { resolved_[key] = value; }
 
@@ -334,7 +335,9 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     const bool die_key = k.rfind("dies", 0) == 0;
     const bool die_solver_key = die_key && (k.find("].friction") != std::string::npos ||
                                             k.find("].motion") != std::string::npos ||
-                                            k.find("].force_factor") != std::string::npos);
+                                            k.find("].force_factor") != std::string::npos ||
+                                            k.find("].temperature") != std::string::npos ||
+                                            k.find("].heat_transfer") != std::string::npos);
     const bool prep_key = k.rfind("geometry.", 0) == 0 || k.rfind("discretization.", 0) == 0 || (die_key && !die_solver_key);
     if (side == Side::solve && prep_key)
       throw Error("--set " + o.path + ": this key is used by rkprep; re-run rkprep with it");
@@ -404,8 +407,18 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
       o.thermal_exponent = m.number("thermal_exponent", std::nullopt, {0, 10, true, false});
       o.melting_temperature = m.number("melting_temperature", std::nullopt, {0, 5000, true, false});
       o.room_temperature = m.number("room_temperature", 293.15, {0, o.melting_temperature, true, false});
-      o.specific_heat = m.number("specific_heat", std::nullopt, {0, 1e5, true, false});
+    }
+    // the thermal keys of every model: Johnson-Cook's flow stress needs the temperature
+    const bool jc = o.model == MaterialModel::johnson_cook;
+    o.specific_heat = m.number("specific_heat", jc ? std::nullopt : std::optional<double>(0.0), {0, 1e5, jc, false});
+    if (o.thermal()) {
       o.taylor_quinney = m.number("taylor_quinney", 0.9, {0, 1});
+      o.conductivity = m.number("conductivity", 0.0, {0, 1e4});
+      o.thermal_expansion = m.number("thermal_expansion", 0.0, {0, 1e-3});
+    } else {
+      for (const char* key : {"taylor_quinney", "conductivity", "thermal_expansion"})
+        if (m.get(key, false))
+          throw Error(name + ": key 'material." + key + "' needs 'material.specific_heat' (the temperature it acts on)");
     }
     m.done();
   }
@@ -421,8 +434,9 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     if (s.material.thermal()) {
       // kelvin: a billet at 1150 C written as 1150 would be 877 C, and one at 1250 C as 1250 K is
       // below the melting point of steel, so only the melting point catches a Celsius slip there
+      const bool melts = s.material.melting_temperature > 0;
       s.initial.temperature = ic.number("temperature", s.material.room_temperature,
-                                        {0, s.material.melting_temperature, true, false});
+                                        {0, melts ? s.material.melting_temperature : 1e4, true, false});
     }
     ic.done();
   }
@@ -483,8 +497,38 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
                   "': the symmetry planes make a sector; give dies[].force_factor (full part / modeled part)");
     else d.number("force_factor", factor, {1, 1e6});
     die.force_factor = factor;
+    if (!s.material.conducting())
+      for (const char* key : {"heat_transfer", "temperature"})
+        if (d.get(key, false))
+          throw Error(where(name, d.get(key, false), "dies") + ": key 'dies[]." + key +
+                      "' needs 'material.conductivity' (heat transfer through the part)");
+    if (s.material.conducting()) {
+      die.heat_transfer = d.number("heat_transfer", 0.0, {0, 1e7});
+      die.temperature = d.number("temperature", s.material.room_temperature, {0, 1e4, true, false});
+    }
     s.dies.push_back(die);
   });
+  {
+    Section t = top.section("thermal");
+    auto& o = s.thermal;
+    if (!s.material.conducting() && t.given())
+      throw Error(name + ": section 'thermal' needs 'material.conductivity' (heat transfer through the part)");
+    if (s.material.conducting()) {
+      o.ambient_temperature = t.number("ambient_temperature", s.material.room_temperature, {0, 1e4, true, false});
+      o.convection = t.number("convection", 0.0, {0, 1e7});
+      o.emissivity = t.number("emissivity", 0.0, {0, 1});
+      o.max_steps_per_update = t.integer("max_steps_per_update", 0, 0, 1000000);
+      t.list("fixed_faces", [&](Section& p) {
+        TemperatureFace f;
+        f.name = p.text("name", "temperature" + std::to_string(o.fixed_faces.size()));
+        f.point = p.vec3("point", std::nullopt);
+        f.normal = p.vec3("normal", std::nullopt, true);
+        f.temperature = p.number("temperature", std::nullopt, {0, 1e4, true, false});
+        o.fixed_faces.push_back(f);
+      });
+      t.done();
+    }
+  }
   {
     Section c = top.section("contact");
     s.contact.penalty_scale = c.number("penalty_scale", s.contact.penalty_scale, {0, 1, true, false});

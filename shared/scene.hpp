@@ -38,6 +38,9 @@ struct Die {
   DieMotion motion;
   double friction = 0;  // Coulomb coefficient
   double force_factor = 1;  // full part / modeled part (symmetry)
+  // heat exchange with a part that conducts heat (material.conductivity > 0)
+  double temperature = 0;    // K, the die's (held constant)
+  double heat_transfer = 0;  // W/(m^2 K), the interface's conductance where the part touches it
 };
 
 // A face of the part held by an essential boundary condition: the particles on the plane through
@@ -65,10 +68,23 @@ struct Material {
   double rate_coefficient = 0, reference_strain_rate = 1;    // C, rate0 (1/s)
   double thermal_exponent = 1;                               // m
   double room_temperature = 293.15, melting_temperature = 0; // K
-  // heating by plastic work (Johnson-Cook): dT = taylor_quinney dW_p / (rho c), adiabatic
-  double specific_heat = 0;      // J/(kg K)
+  // temperature (any model; Johnson-Cook requires it): heating by plastic work, dT = taylor_quinney
+  // dW_p / (rho c); conduction through the part when conductivity > 0 (else adiabatic); the thermal
+  // strain alpha (T - T0), T0 the initial temperature
+  double specific_heat = 0;      // J/(kg K); 0: no temperature
   double taylor_quinney = 0.9;   // the share of plastic work that becomes heat
-  bool thermal() const { return model == MaterialModel::johnson_cook; }
+  double conductivity = 0;       // W/(m K)
+  double thermal_expansion = 0;  // 1/K, linear
+  bool thermal() const { return specific_heat > 0; }
+  bool conducting() const { return conductivity > 0; }
+};
+
+// A face of the part held at a temperature (the particles on the plane, as EssentialFace).
+struct TemperatureFace {
+  std::string name;
+  Vec3 point{};
+  Vec3 normal{};  // unit
+  double temperature = 0;  // K
 };
 
 struct Scene {
@@ -108,6 +124,17 @@ struct Scene {
   std::vector<EssentialFace> fixed_faces, prescribed_faces;
   std::vector<RigidWall> rigid_walls;
   std::vector<Die> dies;
+
+  // Heat transfer (solver/thermal/): where the part conducts heat (material.conductivity > 0), its free
+  // surface exchanges heat with the ambient by convection and radiation, and the thermal update runs
+  // every few mechanical steps, as its own stable step allows (at most max_steps_per_update; 0: no cap).
+  struct Thermal {
+    double ambient_temperature = 293.15;  // K
+    double convection = 0;                // W/(m^2 K)
+    double emissivity = 0;                // -, grey body
+    int max_steps_per_update = 0;
+    std::vector<TemperatureFace> fixed_faces;
+  } thermal;
 
   struct Contact {
     double penalty_scale = 0.25;  // k_I = scale * m_I / dt^2 (< 1: contact never limits the step)

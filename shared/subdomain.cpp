@@ -60,6 +60,8 @@ void write_subdomain_file(const std::string& path, const Subdomain& s) {
     f.write("faces/plus", s.face_plus);
     f.write("faces/minus", s.face_minus);
   }
+  f.write("surface/face_offsets", s.surface_face_offsets);
+  f.write("surface/face_nodes", s.surface_face_nodes);
   f.write("overlap/ranks", s.neighbour_ranks);
   for (std::size_t k = 0; k < s.neighbour_ranks.size(); ++k) {
     char name[40];
@@ -127,6 +129,8 @@ Subdomain read_subdomain(const std::string& path, int rank, int ranks, const std
     s.face_plus = f.read<std::int32_t>("faces/plus");
     s.face_minus = f.read<std::int32_t>("faces/minus");
   }
+  s.surface_face_offsets = f.read<std::int32_t>("surface/face_offsets");
+  s.surface_face_nodes = f.read<std::int32_t>("surface/face_nodes");
   s.neighbour_ranks = f.read<std::int32_t>("overlap/ranks");
   for (auto q : s.neighbour_ranks) {
     char name[40];
@@ -172,6 +176,15 @@ Subdomain read_subdomain(const std::string& path, int rank, int ranks, const std
     require(s.face_plus[q] >= 0 && std::size_t(s.face_plus[q]) < m && s.face_minus[q] >= -1 &&
                 s.face_minus[q] < std::int64_t(m) && std::isfinite(s.face_X[3 * q]) && std::isfinite(s.face_nA[3 * q]),
             path, "face point " + std::to_string(q) + " has a bad point index or a non-finite position or normal");
+  require(!s.surface_face_offsets.empty() && s.surface_face_offsets.front() == 0 &&
+              std::size_t(s.surface_face_offsets.back()) == s.surface_face_nodes.size(),
+          path, "surface face offsets disagree with the node list");
+  for (std::size_t q = 0; q + 1 < s.surface_face_offsets.size(); ++q) {
+    const auto count = s.surface_face_offsets[q + 1] - s.surface_face_offsets[q];
+    require(count == 3 || count == 4, path, "surface face " + std::to_string(q) + " has neither 3 nor 4 nodes");
+  }
+  for (auto node : s.surface_face_nodes)
+    require(node >= 0 && std::size_t(node) < n, path, "a surface face node index is out of range");
   for (const auto& list : s.overlap)
     for (auto i : list) require(i >= 0 && std::size_t(i) < n, path, "an overlap map index is out of range");
   return s;

@@ -6,6 +6,9 @@
 //   points/{X[m,3], weight, cell}                                    their integration points
 //   faces/{X[f,3], nA[f,3], plus, minus}                             nodal integration only: quadrature
 //                                                                    points on the points' smoothing-cell faces
+//   surface/{face_offsets[s+1], face_nodes}                          the part's boundary faces of this
+//                                                                    rank's cells, nodes counter-clockwise
+//                                                                    seen from outside
 //   overlap/ranks, overlap/rank_NNNN                                 per neighbour: shared local
 //                                                                    particle indices, ascending global id
 //   dies/NNNN/{vertices[v,3], triangles[t,3]}  (attr die_count)      rigid die surfaces, outward
@@ -17,7 +20,7 @@
 
 namespace rk {
 
-inline constexpr std::int64_t kFormatVersion = 2;
+inline constexpr std::int64_t kFormatVersion = 3;
 
 enum ParticleFlag : std::uint8_t { kSurface = 1 };
 
@@ -54,6 +57,10 @@ struct Subdomain {
   std::vector<double> face_X, face_nA;  // 3 per face point
   std::vector<std::int32_t> face_plus, face_minus;
 
+  // The part's boundary: the faces of this rank's cells that no other cell shares (CSR, local
+  // particle indices, counter-clockwise seen from outside), for heat exchange through the surface.
+  std::vector<std::int32_t> surface_face_offsets{0}, surface_face_nodes;
+
   // Overlap maps: for neighbour_ranks[k], the shared particles' local indices (ascending global id).
   std::vector<std::int32_t> neighbour_ranks;
   std::vector<std::vector<std::int32_t>> overlap;
@@ -64,6 +71,7 @@ struct Subdomain {
   std::size_t cell_count() const { return cell_global_id.size(); }
   std::size_t point_count() const { return point_weight.size(); }
   std::size_t face_count() const { return face_plus.size(); }
+  std::size_t surface_face_count() const { return surface_face_offsets.size() - 1; }
 };
 
 std::string subdomain_path(const std::string& case_dir, int rank);

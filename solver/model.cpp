@@ -204,6 +204,8 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   bound_gradients(md);
 
   md.dies = sub.dies;
+  md.surface_face_offsets = sub.surface_face_offsets;
+  md.surface_face_nodes = sub.surface_face_nodes;
   build_material_rows(md, shapes);
   md.neighbour_ranks = sub.neighbour_ranks;
   md.overlap = sub.overlap;
@@ -222,13 +224,17 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
                                              mat.hardening_coefficient, mat.hardening_exponent, mat.rate_coefficient,
                                              mat.reference_strain_rate, mat.thermal_exponent, mat.room_temperature,
                                              mat.melting_temperature);
-    md.heat_capacity = mat.density * mat.specific_heat;
-    md.taylor_quinney = mat.taylor_quinney;
   } else {
     md.material = mat.model == MaterialModel::j2_power
                       ? J2Params::power(mat.youngs_modulus, mat.poisson_ratio, mat.strength, mat.reference_strain, mat.exponent)
                       : J2Params::from(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress, mat.hardening_modulus,
                                        mat.model == MaterialModel::j2_linear);
+  }
+  if (mat.thermal()) {
+    md.heat_capacity = mat.density * mat.specific_heat;
+    md.taylor_quinney = mat.taylor_quinney;
+    md.thermal_expansion = mat.thermal_expansion;
+    md.initial_temperature = scene.initial.temperature;
   }
   md.wave_modulus = md.material.bulk + 4.0 / 3.0 * md.material.shear;
   // F-bar averages the dilatation over a cell's points: the identity where every cell has one point

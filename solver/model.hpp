@@ -60,6 +60,9 @@ struct Model {
   // whose work overlaps the messages
   std::vector<std::int32_t> boundary_points, interior_points;
 
+  // the part's boundary faces of this rank's cells (CSR, local particles, counter-clockwise from outside)
+  std::vector<std::int32_t> surface_face_offsets, surface_face_nodes;
+
   // overlap maps (seed Fig. 3)
   std::vector<std::int32_t> neighbour_ranks;
   std::vector<std::vector<std::int32_t>> overlap;
@@ -69,9 +72,11 @@ struct Model {
   J2Params material;
   double density = 0;       // kg/m^3, times the mass-scaling factor
   double mass_scaling = 1;  // density factor applied to reach time.mass_scaling_dt
-  // heating by plastic work (Johnson-Cook): dT = taylor_quinney dW_p / heat_capacity, with the
-  // material's own rho0 c (J/(m^3 K), never mass-scaled); 0 without temperature
+  // heating by plastic work: dT = taylor_quinney dW_p / heat_capacity, with the material's own
+  // rho0 c (J/(m^3 K), never mass-scaled); 0 without temperature. The thermal strain's alpha (1/K)
+  // from the initial temperature T0 (K).
   double heat_capacity = 0, taylor_quinney = 0;
+  double thermal_expansion = 0, initial_temperature = 0;
   double wave_modulus = 0;  // K + 4G/3, for the dilatational wave speed
   bool fbar = true;
 };

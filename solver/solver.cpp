@@ -32,6 +32,7 @@
 #include "state.hpp"
 #include "step_limits.hpp"
 #include "subdomain.hpp"
+#include "thermal/heat_transfer.hpp"
 #include "time_step.hpp"
 
 namespace rk {
@@ -61,6 +62,7 @@ class Simulation {
   void time_step();
   void check_health() const;
   double step_size(bool last);
+  void heat_transfer();
   void internal_force();
   void velocity_update(double dt_avg);
   void constraints(double dt, double dt_avg);
@@ -83,6 +85,7 @@ class Simulation {
   RunClock clock_;
   std::unique_ptr<EssentialBcs> ebc_;
   std::unique_ptr<DieContact> dies_;
+  std::unique_ptr<HeatTransfer> heat_;  // with conduction only
   std::unique_ptr<ResultWriter> results_;
   std::unique_ptr<History> history_;
   std::unique_ptr<HealthChecks> health_;
@@ -121,6 +124,7 @@ void Simulation::run() {
     check_health();                             // a state that is not physical stops every rank here
     const double dt = step_size(last);
     const double dt_avg = st_.step == 0 ? 0.5 * dt : 0.5 * (st_.dt_half + dt);
+    if (heat_ && heat_->due(st_, dt)) heat_transfer();  // conduction and surface heat up to t^n
     internal_force();                           // f = sum_g w_g P_g grad_X N_I - f_contact, overlap summed
     velocity_update(dt_avg);                    // v^{n+1/2} = v^{n-1/2} + dt_avg (g - f / m)
     constraints(dt, dt_avg);                    // the essential BCs at t^{n+1}
@@ -226,7 +230,12 @@ double Simulation::step_size(bool last) {
   return dt;
 }
 
-// In fixed point: the boundary points' and the contacts' partials travel while the interior's are computed.
+void Simulation::heat_transfer() {
+  heat_->update(md_, st_, *dies_, comm_);
+  timer_.stop(kHeatTransfer);
+}
+
+// In fixed point: the boundary points'' and the contacts' partials travel while the interior's are computed.
 void Simulation::internal_force() {
   const FixedScale scale = FixedScale::for_bound(limits_.force_bound, headroom_);
   clear_internal_force(st_);
@@ -322,6 +331,7 @@ void Simulation::rebind() {
   dies_->totals() = totals;
   exchange_.emplace(md_, 3);
   headroom_ = force_headroom(md_, 1 + die_count, die_count, comm_);
+  if (heat_) heat_ = std::make_unique<HeatTransfer>(md_, scene_, comm_);  // the capacities on the new reference
   results_ = collectively(
       comm_, [&] { return std::make_unique<ResultWriter>(opt_.case_dir, md_, scene_.prep_hash, results_->frames()); });
   v_old_.assign(st_.v.size(), 0.0);
@@ -341,6 +351,8 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   st_ = State::initial(md_, scene_.initial.velocity.data(), scene_.initial.velocity_gradient.data());
   init_bulk_viscosity(md_, st_, scene_.bulk_viscosity);
   if (scene_.material.thermal()) st_.temperature.assign(md_.m, scene_.initial.temperature);
+  if (scene_.material.conducting())  // set by HeatTransfer::start or read from the checkpoint
+    st_.particle_temperature.assign(md_.n, scene_.initial.temperature), st_.heat_pending.assign(md_.m, 0.0);
   compute_deformation_gradient(md_, st_);
   double dt0 = stable_time_step(md_, st_, scene_.time.cfl).dt;
   comm.min(&dt0, 1);
@@ -372,6 +384,10 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   if (st_.reference_updates > 0) {  // a restart after updates: back onto the checkpoint's reference
     collectively(comm, [&] { return rebuild_on_reference(md_, st_, scene_, comm), 0; });
     rebind();
+  }
+  if (scene_.material.conducting()) {
+    heat_ = collectively(comm, [&] { return std::make_unique<HeatTransfer>(md_, scene_, comm); });
+    if (!opt.restart) heat_->start(md_, st_, *dies_, comm);
   }
   history_ = std::make_unique<History>(opt.case_dir, scene_, md_, opt.restart ? st_.t : -1.0, comm);
 

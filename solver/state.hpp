@@ -33,9 +33,18 @@ struct State {
   // bulk viscosity (material/bulk_viscosity.hpp), empty when off: q, the stable step's factor, and the det F
   // (from t = 0; the cell's with F-bar) at the last step
   std::vector<double> q, dt_factor, J_last;
-  // temperature (K) per point, Johnson-Cook material only (empty otherwise): raised by the plastic
-  // work of each increment, adiabatically
+  // temperature (K) per point where the material has one (material.specific_heat; empty otherwise):
+  // raised by the plastic work of each increment, and with conduction set to T^h(X_g) at each
+  // thermal update (thermal/heat_transfer.hpp)
   std::vector<double> temperature;
+  // conduction only (material.conductivity; empty otherwise): the particles' temperature
+  // coefficients T_I, and each point's plastic heating since the last thermal update (K), which
+  // `temperature` already holds and the next update spreads to the particles
+  std::vector<double> particle_temperature, heat_pending;
+  double thermal_t = 0, thermal_dt = 0;  // the last thermal update's time and its stable step (s)
+  std::int64_t thermal_step = 0;         // the mechanical step of the last thermal update
+  std::int64_t thermal_updates = 0;
+  double ambient_heat = 0;  // given to the ambient by this rank's surface faces, cumulative (J)
 
   // reference updates (rk/reference_update.hpp); empty until the first: the particles' displacements
   // at the last update (F is gathered from d - d^ref) and each point's det F up to it

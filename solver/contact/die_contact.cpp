@@ -178,6 +178,21 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
   return largest;
 }
 
+int DieContact::touching(const double x[3], double t, double tolerance) const {
+  for (std::size_t k = 0; k < dies_.size(); ++k) {
+    double y[3];
+    for (int i = 0; i < 3; ++i) y[i] = x[i] - dies_[k].motion.stroke(t) * dies_[k].motion.direction[i];
+    const DieHit hit = search_[k]->nearest(y);
+    if (hit.found && hit.gap < tolerance) return int(k);
+  }
+  for (const Plane& p : planes_) {
+    double gap = 0;
+    for (int i = 0; i < 3; ++i) gap += (x[i] - p.point[i]) * p.normal[i];
+    if (gap < tolerance) return -2;
+  }
+  return -1;
+}
+
 double DieContact::symmetry_depth() const { return planes_.size() > walls_ ? totals_.back().max_penetration : 0.0; }
 
 std::int32_t DieContact::deepest_particle(const Model& md) const {

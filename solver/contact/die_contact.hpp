@@ -35,6 +35,7 @@ struct DieTotals {       // per die, per rigid wall, and one for the symmetry pl
   double spring_energy = 0;     // energy stored in the penalty springs now, sum k d^2 / 2 (J)
   std::int64_t contacts = 0;    // this step: particles in contact
   std::int64_t point_contacts = 0;  // this step: integration points in contact
+  double heat = 0;              // conducted from the part into the die, cumulative (J)
 };
 
 class DieContact {
@@ -54,6 +55,10 @@ class DieContact {
   // quarter of its largest side (room for the material the tools push out). A particle outside has
   // left the tools (a health check).
   void box(const double part_lo[3], const double part_hi[3], double t, double lo[3], double hi[3]) const;
+
+  // What the point x (a surface face's centre) touches at time t, within `tolerance` outside it (or
+  // any depth inside): a die's index, -2 for a rigid wall or a symmetry plane, -1 for nothing.
+  int touching(const double x[3], double t, double tolerance) const;
 
   // One entry per die, one per rigid wall, then one for the symmetry planes (when the scene has any).
   const std::vector<DieTotals>& totals() const { return totals_; }

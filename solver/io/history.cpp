@@ -15,9 +15,9 @@ constexpr double HistorySums::* kSumFields[] = {
     &HistorySums::contacts,     &HistorySums::point_contacts, &HistorySums::spring_energy,
     &HistorySums::friction_work, &HistorySums::contact_work,  &HistorySums::volume,
     &HistorySums::ebc_work,     &HistorySums::update_work,    &HistorySums::viscous_work,
-    &HistorySums::heat};
+    &HistorySums::heat,         &HistorySums::ambient_heat};
 constexpr std::size_t kSumCount = std::size(kSumFields);
-constexpr std::size_t kPerDie = 4;  // fx, fy, fz, press work
+constexpr std::size_t kPerDie = 5;  // fx, fy, fz, press work, heat
 
 }  // namespace
 
@@ -73,6 +73,7 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
   s.ebc_work = ebc.step_work();
   s.update_work = st.update_work;
   s.viscous_work = st.viscous_work;
+  s.ambient_heat = st.ambient_heat;
   for (std::size_t g = 0; g < md.m; ++g) s.volume += md.weight[g] * st.total_J(g);
   double coolest = 1e300, hottest = -1e300;  // empty without a temperature
   for (std::size_t g = 0; g < st.temperature.size(); ++g) {
@@ -92,7 +93,7 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
     penetration = std::max(penetration, t.max_penetration);
     if (d >= dies.size()) continue;
     double* die = &sums_[die0 + kPerDie * d];
-    die[0] = t.force[0], die[1] = t.force[1], die[2] = t.force[2], die[3] = t.press_work;
+    die[0] = t.force[0], die[1] = t.force[1], die[2] = t.force[2], die[3] = t.press_work, die[4] = t.heat;
   }
   std::copy(ebc.reactions().begin(), ebc.reactions().end(), sums_.begin() + std::ptrdiff_t(face0));
   for (std::size_t k = 0; k < kSumCount; ++k) sums_[k] = s.*kSumFields[k];
@@ -120,6 +121,8 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
     row_[c++] = v;
   if (!st.temperature.empty())
     for (double v : {s.heat / volume0_, -worst[3], worst[4]}) row_[c++] = v;
+  const bool conducting = !st.particle_temperature.empty();
+  if (conducting) row_[c++] = s.ambient_heat;
   for (std::size_t w = 0; w < walls; ++w) row_[c++] = sums_[kSumCount + w];
   for (std::size_t d = 0; d < dies.size(); ++d) {
     const Die& die = dies.die(d);
@@ -129,6 +132,7 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
                                     f[2] * die.motion.direction[2]);
     row_[c++] = f[0], row_[c++] = f[1], row_[c++] = f[2];
     row_[c++] = f[3];
+    if (conducting) row_[c++] = f[4];
   }
   const std::size_t fixed = scene_.fixed_faces.size();
   for (std::size_t f = 0; f < fixed + scene_.prescribed_faces.size(); ++f) {

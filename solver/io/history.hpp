@@ -36,6 +36,7 @@ struct HistorySums {
   double ebc_work = 0;      // work of the essential BCs' reactions this step
   double update_work = 0, viscous_work = 0;
   double heat = 0;          // sum_g w_g T_g (K m^3), with a temperature
+  double ambient_heat = 0;  // given to the ambient air (J), with conduction
 };
 
 // What a row tells the time loop.

@@ -31,6 +31,13 @@ void cauchy_measures(const double* tau, double J, double& von_mises, double& pre
   pressure = -p / J;
 }
 
+// The temperature column's value at a point: its temperature; with conduction (the particles carry
+// the field T^h) only its plastic heating since the last thermal update.
+double point_heat(const State& st, std::size_t g) {
+  if (st.temperature.empty()) return 0.0;
+  return st.particle_temperature.empty() ? st.temperature[g] : st.heat_pending[g];
+}
+
 }  // namespace
 
 ResultWriter::ResultWriter(const std::string& case_dir, const Model& md, const std::string& scene_hash,
@@ -64,7 +71,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     const double J = st.total_J(g);
     const double values[kProjected] = {1.0,        st.ep[g],   vm,         p,          tau[0] / J, tau[1] / J,
                                        tau[2] / J, tau[3] / J, tau[4] / J, tau[5] / J,
-                                       st.temperature.empty() ? 0.0 : st.temperature[g]};
+                                       point_heat(st, g)};
     double nmax = 0;
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) nmax = std::max(nmax, std::abs(md.N[k]));
     for (int c = 0; c < np; ++c) {
@@ -103,7 +110,13 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     vm.push_back(value(2));
     pr.push_back(value(3));
     for (int c = kStress; c < kStress + 6; ++c) sigma.push_back(value(c));
-    if (np > kTemperature) temperature.push_back(value(kTemperature));
+    if (np > kTemperature) {  // with conduction T^h(X_I) and the pending heat, else the points' temperature
+      double T = 0;
+      if (!st.particle_temperature.empty())
+        for (auto k = md.material_offsets[I]; k < md.material_offsets[I + 1]; ++k)
+          T += md.material_N[std::size_t(k)] * st.particle_temperature[std::size_t(md.material_cols[std::size_t(k)])];
+      temperature.push_back(T + value(kTemperature));
+    }
   }
   const std::string path = result_frame_path(case_dir_, md.rank, frames_), tmp = path + ".tmp";
   try {

@@ -12,7 +12,11 @@ namespace {
 void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n, J2Batch& b) {
   Lane r = splat(1);  // Jbar / J
   for (int l = 0; l < n && md.fbar; ++l) r[l] = st.cell_J[c] / st.J[g + l];
-  const Lane ratio = cube_root_near_one(r);
+  Lane ratio = cube_root_near_one(r);
+  // the thermal stretch 1 + alpha (T - T0) taken out: F_mech = F / (1 + alpha (T - T0)). C_p^-1 is
+  // pushed forward at a reference update with the whole F, so the total stretch is right here.
+  if (md.thermal_expansion > 0)
+    for (int l = 0; l < n; ++l) ratio[l] /= 1 + md.thermal_expansion * (st.temperature[g + l] - md.initial_temperature);
   for (int l = 0; l < kLanes; ++l) {
     if (l >= n) {
       b.at_rest(l);
@@ -98,8 +102,12 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
         st.ep[p] = b.ep[l];
         st.psi[p] = b.psi[l];
         st.wp[p] += b.dissipation[l];
-        // the plastic work's heat, from the increment's end (adiabatic: no conduction yet)
-        if (!st.temperature.empty()) st.temperature[p] += md.taylor_quinney * b.dissipation[l] / md.heat_capacity;
+        // the plastic work's heat, at once at the point (spread by conduction at the next thermal update)
+        if (!st.temperature.empty()) {
+          const double heating = md.taylor_quinney * b.dissipation[l] / md.heat_capacity;
+          st.temperature[p] += heating;
+          if (!st.heat_pending.empty()) st.heat_pending[p] += heating;
+        }
         health.plastic += b.plastic[l] != 0;
         wp += md.weight[p] * (t[0] + t[1] + t[2]) / 3;
         wJ += md.weight[p] * st.total_J(p);

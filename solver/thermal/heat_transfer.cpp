@@ -1,0 +1,243 @@
+#include "thermal/heat_transfer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "rk/internal_force.hpp"
+#include "thermal/heat_transfer_laws.hpp"
+
+namespace rk {
+namespace {
+
+// A face touches what lies within this fraction of its size (sqrt of its area) outside it: the
+// penalty contact leaves the nodes of a face on a die a little inside it, and a face at the edge of
+// the contact, with a node lifting off, still exchanges heat across the thin gap.
+constexpr double kTouch = 0.1;
+// The explicit Euler step's margin under its limit 2 / lambda_max (lambda_max bounded by Gershgorin).
+constexpr double kSafety = 0.9;
+
+double point_temperature(const Model& md, const State& st, std::size_t g) {
+  double T = 0;
+  for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
+    T += md.N[std::size_t(k)] * st.particle_temperature[std::size_t(md.nbr[k])];
+  return T;
+}
+
+// w_g J_ref k J C^-1 at point g (Voigt xx, yy, zz, xy, yz, zx): the conductivity pulled back to the
+// reference, times the point's reference volume.
+void pulled_back_conductance(const Model& md, const State& st, double k, std::size_t g, double K[6]) {
+  const double* F = &st.F[9 * g];
+  const double cof[9] = {F[4] * F[8] - F[5] * F[7], F[5] * F[6] - F[3] * F[8], F[3] * F[7] - F[4] * F[6],
+                         F[2] * F[7] - F[1] * F[8], F[0] * F[8] - F[2] * F[6], F[1] * F[6] - F[0] * F[7],
+                         F[1] * F[5] - F[2] * F[4], F[2] * F[3] - F[0] * F[5], F[0] * F[4] - F[1] * F[3]};
+  const double J = F[0] * cof[0] + F[1] * cof[1] + F[2] * cof[2];
+  // F^-1 = cof^T / J, so J C^-1 = J F^-1 F^-T = cof^T cof / J
+  auto c = [&](int a, int b) { return (cof[a] * cof[b] + cof[3 + a] * cof[3 + b] + cof[6 + a] * cof[6 + b]) / J; };
+  const double scale = md.weight[g] * st.total_J(g) / st.J[g] * k;  // w_g J_ref: the point's reference volume
+  K[0] = scale * c(0, 0), K[1] = scale * c(1, 1), K[2] = scale * c(2, 2);
+  K[3] = scale * c(0, 1), K[4] = scale * c(1, 2), K[5] = scale * c(2, 0);
+}
+
+}  // namespace
+
+HeatTransfer::HeatTransfer(const Model& md, const Scene& scene, const Comm& comm)
+    : scene_(scene), conductance_(6 * md.m), flux_(3 * md.m), spread_(md.m), partial_(2 * md.n), heat_(md.n), bound_(md.n) {
+  headroom_ = force_headroom(md, 1, 64, comm);  // a column per point and particle; faces: at most 64 per particle
+  exchange_.emplace(md, 2);
+  // C_I = rho0 c sum_g w_g N_I(X_g), summed over the ranks
+  const double rho_c = md.heat_capacity;
+  double most = 0;
+  for (std::size_t g = 0; g < md.m; ++g)
+    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
+      most = std::max(most, rho_c * md.weight[g] * std::abs(md.N[std::size_t(k)]));
+  comm.max(&most, 1);
+  const FixedScale scale = FixedScale::for_bound(most, headroom_);
+  std::fill(partial_.begin(), partial_.end(), Fixed(0));
+  for (std::size_t g = 0; g < md.m; ++g)
+    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
+      partial_[2 * std::size_t(md.nbr[k])] += scale.fixed(rho_c * md.weight[g] * md.N[std::size_t(k)]);
+  exchange_->sum(partial_);
+  capacity_.resize(md.n);
+  std::int64_t bad = -1;
+  for (std::size_t I = 0; I < md.n; ++I) {
+    capacity_[I] = scale.real(partial_[2 * I]);
+    if (md.owned[I] && !(capacity_[I] > 0) && bad < 0) bad = md.global_id[I];
+  }
+  comm.check(bad < 0, "particle " + std::to_string(bad) +
+                          ": its heat capacity sum_g w_g N_I(X_g) rho c is not positive (a particle its integration "
+                          "points barely reach); refine the discretization or raise discretization.dilation");
+
+  // the particles on each temperature face, identified at t = 0 (within 1e-6 of a spacing of the plane)
+  for (const TemperatureFace& f : scene.thermal.fixed_faces) {
+    double held = 0;
+    for (std::size_t I = 0; I < md.n; ++I) {
+      double d = 0;
+      for (int i = 0; i < 3; ++i) d += (md.X[3 * I + i] - f.point[i]) * f.normal[i];
+      if (std::abs(d) <= 1e-6 * md.spacing[I]) {
+        fixed_particles_.push_back(std::int32_t(I)), fixed_temperature_.push_back(f.temperature);
+        held += md.owned[I];
+      }
+    }
+    comm.sum(&held, 1);
+    comm.check(held > 0, "thermal.fixed_faces '" + f.name + "': no particle of the part lies on its plane");
+  }
+  faces_.resize(md.surface_face_offsets.empty() ? 0 : md.surface_face_offsets.size() - 1);
+}
+
+void HeatTransfer::start(const Model& md, State& st, DieContact& dies, const Comm& comm) {
+  st.particle_temperature.assign(md.n, md.initial_temperature);
+  for (std::size_t q = 0; q < fixed_particles_.size(); ++q) st.particle_temperature[fixed_particles_[q]] = fixed_temperature_[q];
+  st.heat_pending.assign(md.m, 0.0);
+  for (std::size_t g = 0; g < md.m; ++g) st.temperature[g] = point_temperature(md, st, g);
+  for (std::size_t g = 0; g < md.m; ++g) pulled_back_conductance(md, st, scene_.material.conductivity, g, &conductance_[6 * g]);
+  classify_faces(md, st, dies, st.t);
+  assemble(md, st, dies, 0.0, false, true, comm);
+  st.thermal_dt = stable_step(md, comm);
+  st.thermal_t = st.t, st.thermal_step = st.step;
+}
+
+bool HeatTransfer::due(const State& st, double dt) const {
+  if (!(st.t > st.thermal_t)) return false;
+  const int cap = scene_.thermal.max_steps_per_update;
+  if (cap > 0 && st.step - st.thermal_step >= cap) return true;
+  return st.t + dt - st.thermal_t > st.thermal_dt;
+}
+
+void HeatTransfer::update(const Model& md, State& st, DieContact& dies, const Comm& comm) {
+  const double elapsed = st.t - st.thermal_t;
+  const auto steps = std::max<std::int64_t>(1, std::int64_t(std::ceil(elapsed / st.thermal_dt)));
+  const double dt = elapsed / double(steps);
+  for (std::size_t g = 0; g < md.m; ++g) pulled_back_conductance(md, st, scene_.material.conductivity, g, &conductance_[6 * g]);
+  classify_faces(md, st, dies, st.t);
+  for (std::int64_t s = 0; s < steps; ++s) {
+    assemble(md, st, dies, dt, s == 0, s == 0, comm);
+    for (std::size_t I = 0; I < md.n; ++I) st.particle_temperature[I] += heat_[I] / capacity_[I];
+    for (std::size_t q = 0; q < fixed_particles_.size(); ++q) st.particle_temperature[fixed_particles_[q]] = fixed_temperature_[q];
+    if (s + 1 < steps)  // the faces' temperatures for the next sub-step
+      for (std::size_t f = 0; f < faces_.size(); ++f) {
+        double T = 0;
+        const auto k0 = md.surface_face_offsets[f], k1 = md.surface_face_offsets[f + 1];
+        for (auto k = k0; k < k1; ++k) T += st.particle_temperature[std::size_t(md.surface_face_nodes[k])];
+        faces_[f].T = T / double(k1 - k0);
+      }
+  }
+  st.thermal_dt = stable_step(md, comm);
+  std::fill(st.heat_pending.begin(), st.heat_pending.end(), 0.0);
+  for (std::size_t g = 0; g < md.m; ++g) st.temperature[g] = point_temperature(md, st, g);
+  st.thermal_t = st.t, st.thermal_step = st.step;
+  ++st.thermal_updates;
+}
+
+void HeatTransfer::classify_faces(const Model& md, const State& st, const DieContact& dies, double t) {
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    const auto k0 = md.surface_face_offsets[f], n = md.surface_face_offsets[f + 1] - k0;
+    double x[4][3], centre[3] = {0, 0, 0}, T = 0;
+    for (int a = 0; a < n; ++a) {
+      const auto I = std::size_t(md.surface_face_nodes[std::size_t(k0 + a)]);
+      for (int i = 0; i < 3; ++i) x[a][i] = md.X[3 * I + i] + st.u[3 * I + i], centre[i] += x[a][i] / n;
+      T += st.particle_temperature[I] / n;
+    }
+    // area vector: half the cross product of the diagonals (a quadrilateral) or of two edges (a triangle)
+    const int p = n == 4 ? 3 : 2, q = n == 4 ? 1 : 0;
+    double d1[3], d2[3];
+    for (int i = 0; i < 3; ++i) d1[i] = x[2][i] - x[0][i], d2[i] = x[p][i] - x[q][i];
+    if (n == 3)
+      for (int i = 0; i < 3; ++i) d1[i] = x[1][i] - x[0][i], d2[i] = x[2][i] - x[0][i];
+    const double a[3] = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2], d1[0] * d2[1] - d1[1] * d2[0]};
+    FaceState& face = faces_[f];
+    face.area = 0.5 * std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    face.T = T;
+    face.die = dies.empty() ? -1 : dies.touching(centre, t, kTouch * std::sqrt(face.area));
+  }
+}
+
+void HeatTransfer::assemble(const Model& md, State& st, DieContact& dies, double dt, bool pending, bool bound,
+                            const Comm& comm) {
+  const double rho_c = md.heat_capacity;
+  const Scene::Thermal& air = scene_.thermal;
+  // the points' fluxes w_g J_ref k J C^-1 grad T^h, and bounds on every contribution
+  double most[2] = {0, 0};  // |heat| and |conductance| of one contribution
+  for (std::size_t g = 0; g < md.m; ++g) {
+    double grad[3] = {0, 0, 0}, sum_dN = 0, n_max = 0;
+    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
+      const double* d = &md.dN[3 * std::size_t(k)];
+      const double T = st.particle_temperature[std::size_t(md.nbr[k])];
+      for (int i = 0; i < 3; ++i) grad[i] += d[i] * T;
+      sum_dN += std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      n_max = std::max(n_max, std::abs(md.N[std::size_t(k)]));
+    }
+    const double* K = &conductance_[6 * g];
+    double* q = &flux_[3 * g];
+    q[0] = K[0] * grad[0] + K[3] * grad[1] + K[5] * grad[2];
+    q[1] = K[3] * grad[0] + K[1] * grad[1] + K[4] * grad[2];
+    q[2] = K[5] * grad[0] + K[4] * grad[1] + K[2] * grad[2];
+    const double q_norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+    const double K_norm = std::sqrt(K[0] * K[0] + K[1] * K[1] + K[2] * K[2] + 2 * (K[3] * K[3] + K[4] * K[4] + K[5] * K[5]));
+    const double source = pending ? rho_c * md.weight[g] * std::abs(st.heat_pending[g]) * n_max : 0.0;
+    spread_[g] = K_norm * sum_dN;
+    most[0] = std::max(most[0], dt * q_norm * md.dN_max[g] + source);
+    most[1] = std::max(most[1], spread_[g] * md.dN_max[g]);
+  }
+  // the faces' heat flows into the part (W) and conductances (W/K), each shared by the face's nodes
+  auto face_flow = [&](const FaceState& f, double& conductance) {
+    if (f.die >= 0) {
+      const Die& die = scene_.dies[std::size_t(f.die)];
+      conductance = die.heat_transfer * f.area;
+      return f.area * contact_flux(die.heat_transfer, die.temperature, f.T);
+    }
+    if (f.die == -2) return conductance = 0, 0.0;
+    conductance = f.area * (air.convection + radiation_conductance(air.emissivity, air.ambient_temperature, f.T));
+    return f.area * (convection_flux(air.convection, air.ambient_temperature, f.T) +
+                     radiation_flux(air.emissivity, air.ambient_temperature, f.T));
+  };
+  for (const FaceState& f : faces_) {
+    double c = 0;
+    const double flow = face_flow(f, c);
+    most[0] = std::max(most[0], dt * std::abs(flow) / 3);
+    most[1] = std::max(most[1], c / 3);
+  }
+  comm.max(most, 2);
+  const FixedScale heat = FixedScale::for_bound(most[0], headroom_), conductance = FixedScale::for_bound(most[1], headroom_);
+
+  std::fill(partial_.begin(), partial_.end(), Fixed(0));
+  for (std::size_t g = 0; g < md.m; ++g) {
+    const double* q = &flux_[3 * g];
+    const double stored = pending ? rho_c * md.weight[g] * st.heat_pending[g] : 0.0;
+    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
+      const double* d = &md.dN[3 * std::size_t(k)];
+      Fixed* acc = &partial_[2 * std::size_t(md.nbr[k])];
+      acc[0] += heat.fixed(md.N[std::size_t(k)] * stored - dt * (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]));
+      if (bound) acc[1] += conductance.fixed(spread_[g] * std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+    }
+  }
+  for (std::size_t f = 0; f < faces_.size(); ++f) {
+    double c = 0;
+    const double flow = face_flow(faces_[f], c);
+    const auto k0 = md.surface_face_offsets[f], k1 = md.surface_face_offsets[f + 1];
+    const double share = 1.0 / double(k1 - k0);
+    for (auto k = k0; k < k1; ++k) {
+      Fixed* acc = &partial_[2 * std::size_t(md.surface_face_nodes[k])];
+      acc[0] += heat.fixed(dt * flow * share);
+      if (bound) acc[1] += conductance.fixed(c * share);
+    }
+    // the heat that left the part: into the die it touches, or to the ambient
+    if (faces_[f].die >= 0) dies.totals()[std::size_t(faces_[f].die)].heat -= dt * flow;
+    else st.ambient_heat -= dt * flow;
+  }
+  exchange_->sum(partial_);
+  for (std::size_t I = 0; I < md.n; ++I) {
+    heat_[I] = heat.real(partial_[2 * I]);
+    if (bound) bound_[I] = conductance.real(partial_[2 * I + 1]);
+  }
+}
+
+double HeatTransfer::stable_step(const Model& md, const Comm& comm) const {
+  double dt = 1e300;
+  for (std::size_t I = 0; I < md.n; ++I)
+    if (bound_[I] > 0) dt = std::min(dt, 2 * kSafety * capacity_[I] / bound_[I]);
+  comm.min(&dt, 1);
+  return dt;
+}
+
+}  // namespace rk
