@@ -1,13 +1,19 @@
 #!/usr/bin/python3
-"""Heat conduction in a bar with both ends held at T1 (geometry/heat_slab): the particles' temperature
-in every frame after t = 0 against the series solution of the slab (Carslaw & Jaeger, Conduction of
-Heat in Solids, 1959, section 3.3), T(x, t) = T1 + (T0 - T1) sum_{n odd} 4 / (n pi) sin(n pi x / L)
-exp(-n^2 pi^2 alpha t / L^2), alpha = k / (rho c), and, with --convection H, the bar whose ends lose
-heat to air at T1 through a film of conductance H (section 3.11): the series over the roots of
-beta tan(beta) = Bi with Bi = H L / (2 k). Frames are read with meshio, independently of the solver.
-The error is the largest |T - T_exact| over the particles (T^h(X_I), as rkpost writes it), as a
-fraction of |T1 - T0|. Usage:
-  heat_slab_check.py CASE [--convection H] [--json]
+"""Heat conduction in the bar of geometry/heat_slab (20 x 4 x 4 mm, x along it), the particles'
+temperature T^h(X_I) (as rkpost writes it) in every frame after t = 0 against the exact solution
+(Carslaw & Jaeger, Conduction of Heat in Solids, 1959), alpha = k / (rho c):
+- scene.yaml, both ends held at T1, the sides insulated (section 3.3):
+  T = T1 + (T0 - T1) sum_{n odd} 4 / (n pi) sin(n pi x / L) exp(-n^2 pi^2 alpha t / L^2);
+- scene_convection.yaml, every face cooled by a film of conductance H to air at Ta: the product of
+  the three slabs' series (sections 3.11 and 1.15), each over the roots of b tan(b) = H l / k for a
+  slab of half-thickness l;
+- scene_die.yaml, the lower face on a die at Td through an interface of conductance H, the other
+  faces insulated: the slab series of half-thickness l = 4 mm (the bar and its mirror image), and
+  the lumped capacity T = Td + (T0 - Td) exp(-H A t / (rho c V)) for the bar's mean temperature.
+The error is the largest |T - T_exact| over the particles as a fraction of |T1 - T0|; with a die, the
+lumped error is that of the mean temperature. Frames are read with meshio, independently of the
+solver. Usage:
+  heat_slab_check.py CASE [--json]
 """
 import argparse
 import json
@@ -29,25 +35,24 @@ def fixed_ends(x, t, L, alpha, T0, T1, terms=400):
     return T1 + (T0 - T1) * s
 
 
-def convective_ends(x, t, L, alpha, k, H, T0, T1, terms=200):
-    """Symmetric about the bar's middle: the half-slab -l..l, l = L / 2, with a film on both faces."""
-    l, bi = L / 2, H * L / (2 * k)
+def film_slab(x, centre, l, bi, Fo, terms=200):
+    """(T - Ta) / (T0 - Ta) in a slab |x - centre| <= l cooled through films on both faces, Biot number
+    bi = H l / k, Fourier number Fo = alpha t / l^2."""
     s = np.zeros_like(x)
-    for j in range(terms):  # the j-th root of beta tan(beta) = Bi lies in (j pi, j pi + pi / 2)
+    for j in range(terms):  # the j-th root of b tan(b) = Bi lies in (j pi, j pi + pi / 2)
         lo, hi = j * math.pi + 1e-12, j * math.pi + math.pi / 2 - 1e-12
         for _ in range(200):
             mid = 0.5 * (lo + hi)
             lo, hi = (mid, hi) if mid * math.tan(mid) < bi else (lo, mid)
         b = 0.5 * (lo + hi)
         c = 2 * math.sin(b) / (b + math.sin(b) * math.cos(b))
-        s += c * np.cos(b * (x - l) / l) * math.exp(-b * b * alpha * t / (l * l))
-    return T1 + (T0 - T1) * s
+        s += c * np.cos(b * (x - centre) / l) * math.exp(-b * b * Fo)
+    return s
 
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("case", type=case_folder(("vtk/case.pvd",)))
-    p.add_argument("--convection", type=float, default=None, help="the ends' film conductance H (W/m^2 K)")
     p.add_argument("--json", action="store_true")
     a = p.parse_args()
     require_part(a.case, ("slab.geo",), "heat slab (geometry/heat_slab)")
@@ -56,29 +61,46 @@ def main():
     k, rho, c = mat["conductivity"], mat["density"], mat["specific_heat"]
     T0 = scene["initial_conditions"]["temperature"]
     alpha, L = k / (rho * c), 0.02
-    faces = scene["thermal"]["fixed_faces"]
-    if (a.convection is None) != bool(faces):
-        raise SystemExit(f"heat_slab_check.py: {a.case}: give --convection exactly when the ends are not held at a temperature")
-    T1 = faces[0]["temperature"] if faces else scene["thermal"]["ambient_temperature"]
+    thermal = scene.get("thermal") or {}
+    faces = thermal.get("fixed_faces") or []
+    dies = [d for d in scene.get("dies") or [] if d.get("heat_transfer", 0) > 0]
+    W = 0.004
+    if faces:
+        kind, T1 = "fixed ends", faces[0]["temperature"]
+    elif dies:
+        kind, T1, H = "die", dies[0]["temperature"], dies[0]["heat_transfer"]
+    else:
+        kind, T1, H = "convection", thermal["ambient_temperature"], thermal["convection"]
     pvd = (a.case / "vtk/case.pvd").read_text()
-    frames = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', pvd)
-    out = {"alpha_m2_s": alpha, "frames": []}
+    frames = re.findall(r'timestep="([^"]+)"[^>]*name="part"[^>]*file="([^"]+)"', pvd)
+    out = {"kind": kind, "alpha_m2_s": alpha, "frames": []}
     for t, name in frames:
         t = float(t)
         if t <= 0:
             continue
         m = meshio.read(a.case / "vtk" / name)
-        x, T = m.points[:, 0], m.point_data["temperature"].reshape(-1)
-        exact = fixed_ends(x, t, L, alpha, T0, T1) if faces else convective_ends(x, t, L, alpha, k, a.convection, T0, T1)
+        x, T = m.points, m.point_data["temperature"].reshape(-1)
+        if kind == "fixed ends":
+            exact = fixed_ends(x[:, 0], t, L, alpha, T0, T1)
+        elif kind == "die":
+            exact = T1 + (T0 - T1) * film_slab(x[:, 2], W, W, H * W / k, alpha * t / W**2)
+        else:
+            exact = T1 + (T0 - T1) * np.prod([film_slab(x[:, i], c / 2, c / 2, H * c / (2 * k), alpha * t / (c / 2) ** 2)
+                                              for i, c in enumerate((L, W, W))], axis=0)
         error = float(np.max(np.abs(T - exact)) / abs(T1 - T0))
-        out["frames"].append({"time_s": t, "max_error": error, "mean_K": float(np.mean(T)),
-                              "exact_mean_K": float(np.mean(exact))})
+        frame = {"time_s": t, "max_error": error, "mean_K": float(np.mean(T)), "exact_mean_K": float(np.mean(exact))}
+        if kind == "die":  # lumped capacity: A / V = 1 / W (the lower face)
+            lumped = T1 + (T0 - T1) * math.exp(-H * t / (rho * c * W))
+            frame["lumped_error"] = abs(frame["mean_K"] - lumped) / abs(T1 - T0)
+        out["frames"].append(frame)
     out["max_error"] = max(f["max_error"] for f in out["frames"])
+    if kind == "die":
+        out["max_lumped_error"] = max(f["lumped_error"] for f in out["frames"])
     if a.json:
         print(json.dumps(out, indent=1))
     else:
-        print(" ".join(f"t={f['time_s']:g}s err={f['max_error']:.4f}" for f in out["frames"]),
-              f"max {out['max_error']:.4f}")
+        print(kind + ":", " ".join(f"t={f['time_s']:g}s err={f['max_error']:.4f}" for f in out["frames"]),
+              f"max {out['max_error']:.4f}", f"lumped {out['max_lumped_error']:.4f}" if kind == "die" else "")
 
 
 if __name__ == "__main__":

@@ -36,6 +36,8 @@ struct RunSummary {
   double mass_scaling = 1;
   double max_kinetic_internal_ratio = 0;  // past 5 % of the run: a quasi-static run keeps it small
   std::int64_t reference_updates = 0, frames = 0;
+  std::int64_t thermal_updates = 0;  // with heat conduction: the thermal updates of the run
+  double thermal_step_s = 0;         // and the last stable thermal step
   double peak_memory_mb_max_rank = 0, peak_bytes_per_point = 0, resident_bytes_per_point = 0;
   std::map<std::string, PhaseTime> phases;  // by the phase names of the step (shared/phase_names.hpp)
   std::vector<std::string> warnings;        // suspicious but legal, also printed by rksolve

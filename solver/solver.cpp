@@ -62,6 +62,7 @@ class Simulation {
   void time_step();
   void check_health() const;
   double step_size(bool last);
+  bool heat_due(double dt, bool last) const;
   void heat_transfer();
   void internal_force();
   void velocity_update(double dt_avg);
@@ -124,7 +125,7 @@ void Simulation::run() {
     check_health();                             // a state that is not physical stops every rank here
     const double dt = step_size(last);
     const double dt_avg = st_.step == 0 ? 0.5 * dt : 0.5 * (st_.dt_half + dt);
-    if (heat_ && heat_->due(st_, dt)) heat_transfer();  // conduction and surface heat up to t^n
+    if (heat_due(dt, last)) heat_transfer();    // conduction and surface heat from the last update to t^n
     internal_force();                           // f = sum_g w_g P_g grad_X N_I - f_contact, overlap summed
     velocity_update(dt_avg);                    // v^{n+1/2} = v^{n-1/2} + dt_avg (g - f / m)
     constraints(dt, dt_avg);                    // the essential BCs at t^{n+1}
@@ -146,6 +147,7 @@ void Simulation::reference_update() {
   const Projection project = [&](std::size_t I, double* x) { ebc_->project(md_, I, st_.t, x); };
   collectively(comm_, [&] { return update_reference(md_, st_, scene_, comm_, project), 0; });
   rebind();
+  if (heat_) heat_->reproject(md_, st_, comm_);  // the heat content kept on the new shapes
   timer_.stop(kReferenceUpdate);
 }
 
@@ -228,6 +230,12 @@ double Simulation::step_size(bool last) {
     if (clock_.next_output - st_.t > 1e-9 * out_dt) dt = std::min(dt, clock_.next_output - st_.t);
   }
   return dt;
+}
+
+// As the temperature's stable step requires (thermal/heat_transfer.hpp), and before every history row
+// and frame: what they report is the temperature at t^n, never one a thermal step behind.
+bool Simulation::heat_due(double dt, bool last) const {
+  return heat_ && (heat_->due(st_, dt) || history_due(last) || output_due(last));
 }
 
 void Simulation::heat_transfer() {

@@ -30,11 +30,12 @@ RunSummary write_run_report(const std::string& case_dir, const Scene& scene, con
   comm.sum(mem_sum, 2);
   const double bytes_per_mb_point = 1048576.0 / std::max(points, 1.0);
   // Suspicious but legal: a die that never touched the part (another unit, a wrong place, a motion
-  // away from the part) leaves a run with no forming in it. Its work over the run (checkpointed) is 0.
+  // away from the part) leaves a run with no forming in it. Its work and heat over the run
+  // (checkpointed) are 0.
   std::vector<double> touched(dies.size());
   for (std::size_t d = 0; d < dies.size(); ++d) {
     const DieTotals& t = dies.totals()[d];
-    touched[d] = std::abs(t.press_work) + std::abs(t.contact_work) + std::abs(t.friction_work);
+    touched[d] = std::abs(t.press_work) + std::abs(t.contact_work) + std::abs(t.friction_work) + std::abs(t.heat);
   }
   comm.sum(touched.data(), int(touched.size()));
   RunSummary s;
@@ -69,6 +70,7 @@ RunSummary write_run_report(const std::string& case_dir, const Scene& scene, con
   s.mass_scaling = md.mass_scaling;
   s.max_kinetic_internal_ratio = clock.max_ke_ratio;
   s.reference_updates = st.reference_updates;
+  s.thermal_updates = st.thermal_updates, s.thermal_step_s = st.thermal_dt;
   s.frames = counts.frames;
   s.peak_memory_mb_max_rank = mem_max;
   s.peak_bytes_per_point = mem_sum[0] * bytes_per_mb_point;

@@ -97,6 +97,25 @@ void HeatTransfer::start(const Model& md, State& st, DieContact& dies, const Com
   st.thermal_t = st.t, st.thermal_step = st.step;
 }
 
+void HeatTransfer::reproject(const Model& md, State& st, const Comm& comm) {
+  const double rho_c = md.heat_capacity;
+  double most = 0;
+  for (std::size_t g = 0; g < md.m; ++g)
+    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
+      most = std::max(most, rho_c * md.weight[g] * std::abs(md.N[std::size_t(k)] * st.temperature[g]));
+  comm.max(&most, 1);
+  const FixedScale scale = FixedScale::for_bound(most, headroom_);
+  std::fill(partial_.begin(), partial_.end(), Fixed(0));
+  for (std::size_t g = 0; g < md.m; ++g)
+    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
+      partial_[2 * std::size_t(md.nbr[k])] += scale.fixed(rho_c * md.weight[g] * md.N[std::size_t(k)] * st.temperature[g]);
+  exchange_->sum(partial_);
+  for (std::size_t I = 0; I < md.n; ++I) st.particle_temperature[I] = scale.real(partial_[2 * I]) / capacity_[I];
+  for (std::size_t q = 0; q < fixed_particles_.size(); ++q) st.particle_temperature[fixed_particles_[q]] = fixed_temperature_[q];
+  std::fill(st.heat_pending.begin(), st.heat_pending.end(), 0.0);
+  for (std::size_t g = 0; g < md.m; ++g) st.temperature[g] = point_temperature(md, st, g);
+}
+
 bool HeatTransfer::due(const State& st, double dt) const {
   if (!(st.t > st.thermal_t)) return false;
   const int cap = scene_.thermal.max_steps_per_update;

@@ -41,6 +41,12 @@ class HeatTransfer {
   // stable step. Collective.
   void start(const Model& md, State& st, DieContact& dies, const Comm& comm);
 
+  // After a reference update (the shape functions and so the capacities changed): the coefficients
+  // of the points' temperatures (their pending heat included) projected onto the new shapes, lumped,
+  // C_I T_I = rho0 c sum_g w_g N_I(X_g) T_g, so the part's heat content sum_I C_I T_I = rho0 c
+  // sum_g w_g T_g is kept exactly; the points' T^h follow. Collective.
+  void reproject(const Model& md, State& st, const Comm& comm);
+
   // Whether the mechanical step dt from t^n would carry the temperature past its stable step (or past
   // the cap on mechanical steps per update): then update() runs first.
   bool due(const State& st, double dt) const;

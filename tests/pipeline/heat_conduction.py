@@ -1,0 +1,63 @@
+"""Heat conduction alone, in the steel bar of geometry/heat_slab (20 x 4 x 4 mm at 1 mm spacing), against
+the exact solutions that scripts/heat_slab_check.py computes (Carslaw & Jaeger 1959):
+- both ends held at 400 K, the bar at 300 K (scene.yaml): the particles' T^h within 1 % of the series
+  at 2, 4, 6, 8 and 10 s; and the same answer whatever the thermal update's interval: one update every
+  mechanical step against the default (every ~6 steps, as the stable step allows);
+- the bar on a die at 300 K (scene_die.yaml, copper at 600 K, 2000 W/m^2 K): the series of the
+  film-cooled slab, and the lumped capacity T = Td + (T0 - Td) exp(-h A t / (rho c V)) for the mean;
+  the heat the die took equals the heat the bar lost;
+- every face cooled by a 5000 W/m^2 K film (scene_convection.yaml): the product of three slab series."""
+import csv
+import json
+import subprocess
+import sys
+
+import rkcase
+
+tools = rkcase.tools_from_argv()
+folder = rkcase.ROOT / "geometry" / "heat_slab"
+
+
+def run(name, scene, sets=()):
+    case = tools.case(name)
+    tools.prep(case, 1, scene=folder / scene)
+    tools.solve(case, 1, sets=sets)
+    tools.post(case)
+    out = subprocess.run([sys.executable, rkcase.ROOT / "scripts" / "heat_slab_check.py", case, "--json"],
+                         capture_output=True, text=True, check=True).stdout
+    return case, json.loads(out)
+
+
+# Measured 2026-12-02: largest error 0.76 % (at 2 s, the start's jump at the ends; 1.28 % at 2 mm
+# spacing, 0.39 % at 0.5 mm), 0.10 % at 10 s. The issue's bound, 1 %, is above it.
+case, fixed = run("slab", "scene.yaml")
+rkcase.check(fixed["max_error"] < 0.01, f"held ends: T^h within {fixed['max_error']:.4f} of the series (< 0.01)")
+every, fixed1 = run("slab_every_step", "scene.yaml", ["thermal.max_steps_per_update=1", "time.end=4"])
+means = [f["mean_K"] for f in fixed["frames"][:2]], [f["mean_K"] for f in fixed1["frames"][:2]]
+gap = max(abs(a - b) for a, b in zip(*means)) / 100
+# measured 1.9e-4 of the 100 K step in the means at 2 and 4 s (4e-5 at 10 s): the explicit step's
+# error, a fortieth of the discretization's
+rkcase.check(gap < 4e-4, f"an update every step and every few steps agree within {gap:.1e} of T1 - T0 (< 4e-4)")
+summary = [json.loads((c / "solve.json").read_text()) for c in (case, every)]
+per_step = [r["thermal_updates"] / r["steps"] for r in summary]  # measured 0.20 (every 5 steps) and 1.0
+rkcase.check(per_step[0] < 0.5 and per_step[1] > 0.99, f"thermal updates per mechanical step: {per_step[0]:.2f} by default, {per_step[1]:.2f} capped at 1")
+
+# Measured: series 0.06 %, lumped 0.23 % (the lumped model's own error at Biot 0.02 is of that size)
+case, die = run("slab_die", "scene_die.yaml")
+rkcase.check(die["max_error"] < 0.002, f"die chilling: T^h within {die['max_error']:.4f} of the film-cooled slab's series (< 0.002)")
+rkcase.check(die["max_lumped_error"] < 0.005, f"die chilling: the mean within {die['max_lumped_error']:.4f} of the lumped capacity (< 0.005)")
+rows = list(csv.DictReader(open(case / "history.csv")))
+V = json.loads((case / "prep.json").read_text())["volume_m3"]
+lost = 8900 * 385 * V * (600 - float(rows[-1]["temperature_mean"]))
+taken = float(rows[-1]["die.heat"])
+# the heat content sum_I C_I T_I = rho c sum_g w_g T_g, so the balance holds to the history's digits
+rkcase.check(abs(taken - lost) < 1e-6 * lost, f"the die took {taken:.6f} J, the bar lost {lost:.6f} J")
+
+# Measured: 3.5 % at 0.4 s at the bar's corners, where three films meet (1.4 % at 0.5 mm spacing:
+# first order there), 0.54 % at 2 s; the mean within 0.27 %
+case, conv = run("slab_convection", "scene_convection.yaml")
+rkcase.check(conv["max_error"] < 0.05, f"convection: T^h within {conv['max_error']:.4f} of the product series (< 0.05)")
+last = conv["frames"][-1]
+rkcase.check(last["max_error"] < 0.01, f"convection: within {last['max_error']:.4f} at {last['time_s']} s (< 0.01)")
+worst_mean = max(abs(f["mean_K"] - f["exact_mean_K"]) / 300 for f in conv["frames"])
+rkcase.check(worst_mean < 0.005, f"convection: the mean temperature within {worst_mean:.5f} of the exact mean (< 0.005)")
