@@ -127,12 +127,13 @@ struct Scene {
 
   // Heat transfer (solver/thermal/): where the part conducts heat (material.conductivity > 0), its free
   // surface exchanges heat with the ambient by convection and radiation, and the thermal update runs
-  // every few mechanical steps, as its own stable step allows (at most max_steps_per_update; 0: no cap).
+  // every few mechanical steps, as its own stable step allows, at most every max_steps_per_update
+  // (0: as the stable step allows), and before each frame.
   struct Thermal {
     double ambient_temperature = 293.15;  // K
     double convection = 0;                // W/(m^2 K)
     double emissivity = 0;                // -, grey body
-    int max_steps_per_update = 0;
+    int max_steps_per_update = 20;
     std::vector<TemperatureFace> fixed_faces;
   } thermal;
 

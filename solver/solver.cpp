@@ -232,10 +232,11 @@ double Simulation::step_size(bool last) {
   return dt;
 }
 
-// As the temperature's stable step requires (thermal/heat_transfer.hpp), and before every history row
-// and frame: what they report is the temperature at t^n, never one a thermal step behind.
+// As the temperature's stable step and thermal.max_steps_per_update require (thermal/heat_transfer.hpp),
+// and before every frame: a frame shows the temperature at t^n. (Not at the history rows: their
+// spacing, time.end / 500, would make the answer depend on time.end.)
 bool Simulation::heat_due(double dt, bool last) const {
-  return heat_ && (heat_->due(st_, dt) || history_due(last) || output_due(last));
+  return heat_ && (heat_->due(st_, dt) || output_due(last));
 }
 
 void Simulation::heat_transfer() {
