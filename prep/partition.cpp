@@ -113,6 +113,7 @@ std::vector<Subdomain> build_subdomains(const SubdomainRequest& r) {
         for (auto k = boundary.face_offsets[f]; k < boundary.face_offsets[f + 1]; ++k)
           s.surface_face_nodes.push_back(local_index[boundary.face_nodes[k]]);
         s.surface_face_offsets.push_back(std::int32_t(s.surface_face_nodes.size()));
+        s.surface_face_cell.push_back(cell_local[boundary.cell[f]]);
       }
     std::vector<std::int32_t> point_local(r.disc.point_weight.size(), -1);
     for (auto g : points_of[q]) {

@@ -334,10 +334,12 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     const std::string& k = o.path;
     const bool die_key = k.rfind("dies", 0) == 0;
     const bool die_solver_key = die_key && (k.find("].friction") != std::string::npos ||
+                                            k.find("].shear_factor") != std::string::npos ||
                                             k.find("].motion") != std::string::npos ||
                                             k.find("].force_factor") != std::string::npos ||
                                             k.find("].temperature") != std::string::npos ||
-                                            k.find("].heat_transfer") != std::string::npos);
+                                            k.find("].heat_transfer") != std::string::npos ||
+                                            k.find("].friction_heat_share") != std::string::npos);
     const bool prep_key = k.rfind("geometry.", 0) == 0 || k.rfind("discretization.", 0) == 0 || (die_key && !die_solver_key);
     if (side == Side::solve && prep_key)
       throw Error("--set " + o.path + ": this key is used by rkprep; re-run rkprep with it");
@@ -481,6 +483,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     d.record("cad", die.cad);
     die.unit = unit_length(d.text("unit", "m", {"m", "mm", "cm", "in"}));
     die.friction = d.number("friction", 0.0, {0, 10});
+    die.shear_factor = d.number("shear_factor", 0.0, {0, 1});
     die.motion = read_motion(d, name);
     // Full part / modeled part: each symmetry plane whose normal is normal to the motion mirrors the
     // die force; two orthogonal such planes make a quarter (x4). Other sectors must say it. (Normal:
@@ -498,13 +501,14 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     else d.number("force_factor", factor, {1, 1e6});
     die.force_factor = factor;
     if (!s.material.conducting())
-      for (const char* key : {"heat_transfer", "temperature"})
+      for (const char* key : {"heat_transfer", "temperature", "friction_heat_share"})
         if (d.get(key, false))
           throw Error(where(name, d.get(key, false), "dies") + ": key 'dies[]." + key +
                       "' needs 'material.conductivity' (heat transfer through the part)");
     if (s.material.conducting()) {
       die.heat_transfer = d.number("heat_transfer", 0.0, {0, 1e7});
       die.temperature = d.number("temperature", s.material.room_temperature, {0, 1e4, true, false});
+      die.friction_heat_share = d.number("friction_heat_share", 0.5, {0, 1});
     }
     s.dies.push_back(die);
   });

@@ -36,11 +36,15 @@ struct Die {
   std::string cad;      // absolute path
   double unit = 1.0;    // metres per CAD unit
   DieMotion motion;
-  double friction = 0;  // Coulomb coefficient
+  double friction = 0;  // Coulomb coefficient mu
+  // shear factor m in [0, 1]: tau = m k (k the part's shear yield stress there); with friction > 0
+  // as well, the hybrid law tau = min(mu p, m k)
+  double shear_factor = 0;
   double force_factor = 1;  // full part / modeled part (symmetry)
   // heat exchange with a part that conducts heat (material.conductivity > 0)
   double temperature = 0;    // K, the die's (held constant)
   double heat_transfer = 0;  // W/(m^2 K), the interface's conductance where the part touches it
+  double friction_heat_share = 0.5;  // the share of the friction's heat that goes into the die
 };
 
 // A face of the part held by an essential boundary condition: the particles on the plane through

@@ -62,6 +62,7 @@ void write_subdomain_file(const std::string& path, const Subdomain& s) {
   }
   f.write("surface/face_offsets", s.surface_face_offsets);
   f.write("surface/face_nodes", s.surface_face_nodes);
+  f.write("surface/face_cell", s.surface_face_cell);
   f.write("overlap/ranks", s.neighbour_ranks);
   for (std::size_t k = 0; k < s.neighbour_ranks.size(); ++k) {
     char name[40];
@@ -131,6 +132,7 @@ Subdomain read_subdomain(const std::string& path, int rank, int ranks, const std
   }
   s.surface_face_offsets = f.read<std::int32_t>("surface/face_offsets");
   s.surface_face_nodes = f.read<std::int32_t>("surface/face_nodes");
+  s.surface_face_cell = f.read<std::int32_t>("surface/face_cell");
   s.neighbour_ranks = f.read<std::int32_t>("overlap/ranks");
   for (auto q : s.neighbour_ranks) {
     char name[40];
@@ -185,6 +187,9 @@ Subdomain read_subdomain(const std::string& path, int rank, int ranks, const std
   }
   for (auto node : s.surface_face_nodes)
     require(node >= 0 && std::size_t(node) < n, path, "a surface face node index is out of range");
+  require(s.surface_face_cell.size() == s.surface_face_count(), path, "surface face cells disagree with the faces' count");
+  for (auto cell : s.surface_face_cell)
+    require(cell >= 0 && std::size_t(cell) < c, path, "a surface face's cell index is out of range");
   for (const auto& list : s.overlap)
     for (auto i : list) require(i >= 0 && std::size_t(i) < n, path, "an overlap map index is out of range");
   return s;

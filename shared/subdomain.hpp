@@ -6,9 +6,9 @@
 //   points/{X[m,3], weight, cell}                                    their integration points
 //   faces/{X[f,3], nA[f,3], plus, minus}                             nodal integration only: quadrature
 //                                                                    points on the points' smoothing-cell faces
-//   surface/{face_offsets[s+1], face_nodes}                          the part's boundary faces of this
+//   surface/{face_offsets[s+1], face_nodes, face_cell}               the part's boundary faces of this
 //                                                                    rank's cells, nodes counter-clockwise
-//                                                                    seen from outside
+//                                                                    seen from outside, and their cells
 //   overlap/ranks, overlap/rank_NNNN                                 per neighbour: shared local
 //                                                                    particle indices, ascending global id
 //   dies/NNNN/{vertices[v,3], triangles[t,3]}  (attr die_count)      rigid die surfaces, outward
@@ -20,7 +20,7 @@
 
 namespace rk {
 
-inline constexpr std::int64_t kFormatVersion = 3;
+inline constexpr std::int64_t kFormatVersion = 4;
 
 enum ParticleFlag : std::uint8_t { kSurface = 1 };
 
@@ -58,8 +58,9 @@ struct Subdomain {
   std::vector<std::int32_t> face_plus, face_minus;
 
   // The part's boundary: the faces of this rank's cells that no other cell shares (CSR, local
-  // particle indices, counter-clockwise seen from outside), for heat exchange through the surface.
-  std::vector<std::int32_t> surface_face_offsets{0}, surface_face_nodes;
+  // particle indices, counter-clockwise seen from outside) and the local cell each bounds: heat
+  // exchange through the surface, the shear friction of hot forging.
+  std::vector<std::int32_t> surface_face_offsets{0}, surface_face_nodes, surface_face_cell;
 
   // Overlap maps: for neighbour_ranks[k], the shared particles' local indices (ascending global id).
   std::vector<std::int32_t> neighbour_ranks;

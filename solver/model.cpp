@@ -206,6 +206,7 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   md.dies = sub.dies;
   md.surface_face_offsets = sub.surface_face_offsets;
   md.surface_face_nodes = sub.surface_face_nodes;
+  md.surface_face_cell = sub.surface_face_cell;
   build_material_rows(md, shapes);
   md.neighbour_ranks = sub.neighbour_ranks;
   md.overlap = sub.overlap;

@@ -60,8 +60,9 @@ struct Model {
   // whose work overlaps the messages
   std::vector<std::int32_t> boundary_points, interior_points;
 
-  // the part's boundary faces of this rank's cells (CSR, local particles, counter-clockwise from outside)
-  std::vector<std::int32_t> surface_face_offsets, surface_face_nodes;
+  // the part's boundary faces of this rank's cells (CSR, local particles, counter-clockwise from
+  // outside) and the local cell each bounds
+  std::vector<std::int32_t> surface_face_offsets, surface_face_nodes, surface_face_cell;
 
   // overlap maps (seed Fig. 3)
   std::vector<std::int32_t> neighbour_ranks;

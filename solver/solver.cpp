@@ -339,7 +339,7 @@ void Simulation::rebind() {
   dies_ = std::make_unique<DieContact>(md_, scene_, md_.dies);
   dies_->totals() = totals;
   exchange_.emplace(md_, 3);
-  headroom_ = force_headroom(md_, 1 + die_count, die_count, comm_);
+  headroom_ = force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm_);
   if (heat_) heat_ = std::make_unique<HeatTransfer>(md_, scene_, comm_);  // the capacities on the new reference
   results_ = collectively(
       comm_, [&] { return std::make_unique<ResultWriter>(opt_.case_dir, md_, scene_.prep_hash, results_->frames()); });
@@ -360,8 +360,11 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   st_ = State::initial(md_, scene_.initial.velocity.data(), scene_.initial.velocity_gradient.data());
   init_bulk_viscosity(md_, st_, scene_.bulk_viscosity);
   if (scene_.material.thermal()) st_.temperature.assign(md_.m, scene_.initial.temperature);
+  for (const Die& d : scene_.dies)  // the flow stress of shear friction takes the rate
+    if (d.shear_factor > 0) st_.plastic_rate.assign(md_.m, 0.0);
   if (scene_.material.conducting())  // set by HeatTransfer::start or read from the checkpoint
-    st_.particle_temperature.assign(md_.n, scene_.initial.temperature), st_.heat_pending.assign(md_.m, 0.0);
+    st_.particle_temperature.assign(md_.n, scene_.initial.temperature), st_.heat_pending.assign(md_.m, 0.0),
+    st_.surface_heat.assign(md_.n, 0.0);
   compute_deformation_gradient(md_, st_);
   double dt0 = stable_time_step(md_, st_, scene_.time.cfl).dt;
   comm.min(&dt0, 1);
@@ -388,7 +391,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   first_step_ = st_.step;
   const int die_count = int(md_.dies.size());
   exchange_.emplace(md_, 3);
-  headroom_ = force_headroom(md_, 1 + die_count, die_count, comm);
+  headroom_ = force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm);
   v_old_.assign(st_.v.size(), 0.0);
   if (st_.reference_updates > 0) {  // a restart after updates: back onto the checkpoint's reference
     collectively(comm, [&] { return rebuild_on_reference(md_, st_, scene_, comm), 0; });

@@ -28,6 +28,7 @@ struct State {
   std::vector<double> ep;      // equivalent plastic strain
   std::vector<double> psi;     // stored elastic energy density (J/m^3, reference volume)
   std::vector<double> wp;      // accumulated plastic work density (J/m^3, reference volume)
+  std::vector<double> plastic_rate;  // the last increment's d ep / dt (1/s); only for shear friction (empty otherwise)
   std::vector<double> force_bound;  // per point: w |P| max|grad N|, bounds its force contributions
   std::vector<double> cell_J;  // cell-averaged det F (F-bar)
   // bulk viscosity (material/bulk_viscosity.hpp), empty when off: q, the stable step's factor, and the det F
@@ -41,6 +42,7 @@ struct State {
   // coefficients T_I, and each point's plastic heating since the last thermal update (K), which
   // `temperature` already holds and the next update spreads to the particles
   std::vector<double> particle_temperature, heat_pending;
+  std::vector<double> surface_heat;  // per particle: the friction's heat at it as a contact slave (J), owner only
   double thermal_t = 0, thermal_dt = 0;  // the last thermal update's time and its stable step (s)
   std::int64_t thermal_step = 0;         // the mechanical step of the last thermal update
   std::int64_t thermal_updates = 0;

@@ -6,6 +6,8 @@
 // - Tangential: Coulomb friction. The stick force f_s is the force that stops the relative
 //   tangential velocity v_t in one step (m |v_t| / dt, the caller's share of it); the slave sticks
 //   when f_s <= mu f_n and slips with mu f_n otherwise, always against v_t.
+// - The shear factor and hybrid laws of hot forging (tau = m k, tau = min(mu p, m k)) act on the part's
+//   boundary faces (contact/die_contact.cpp) with the flow stress and pressure of the face's cell.
 // Pure functions, unit-tested without particles or MPI (tests/unit/test_contact_laws.cpp).
 #pragma once
 #include <algorithm>
@@ -37,6 +39,25 @@ inline void coulomb_friction(double mu, double normal_force, double stick_force,
   f[0] = f[1] = f[2] = 0;
   if (!(mu > 0 && vt_norm > 0)) return;
   const double magnitude = std::min(stick_force, mu * normal_force);
+  for (int i = 0; i < 3; ++i) f[i] = -magnitude * vt[i] / vt_norm;
+}
+
+// The friction stress of the forging codes' laws at an interface where the material's flow stress is
+// sigma_y (so its shear yield stress k = sigma_y / sqrt 3) and the contact pressure p >= 0:
+// the shear factor law tau = m k (m in [0, 1]: 1 is sticking friction, the material shearing itself),
+// and the hybrid law tau = min(mu p, m k) (Coulomb at low pressure, capped by the material's shear).
+inline double shear_factor_stress(double m, double flow_stress) { return m * flow_stress / std::sqrt(3.0); }
+inline double hybrid_friction_stress(double mu, double pressure, double m, double flow_stress) {
+  return std::min(mu * std::max(pressure, 0.0), shear_factor_stress(m, flow_stress));
+}
+
+// The friction force of a stress tau over an area A: min(f_stick, tau A) against the sliding
+// direction v_t / |v_t|; zero where nothing slides.
+inline void interface_friction(double tau, double area, double stick_force, const double vt[3], double vt_norm,
+                               double f[3]) {
+  f[0] = f[1] = f[2] = 0;
+  if (!(tau > 0 && vt_norm > 0)) return;
+  const double magnitude = std::min(stick_force, tau * area);
   for (int i = 0; i < 3; ++i) f[i] = -magnitude * vt[i] / vt_norm;
 }
 

@@ -5,7 +5,9 @@
 #include <limits>
 
 #include "contact/contact_laws.hpp"
+#include "parallel/overlap_exchange.hpp"
 #include "rk/kinematics.hpp"
+#include "rk/surface_faces.hpp"
 
 namespace rk {
 
@@ -65,6 +67,20 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
     }
   }
   stroke_last_.assign(dies_.size(), 0.0);
+  for (const Die& d : dies_) shear_ = shear_ || d.shear_factor > 0;
+  if (shear_) {  // the boundary faces' masses for the stick force: each node's shared among its faces
+    const std::size_t faces = md.surface_face_offsets.size() - 1;
+    std::vector<Fixed> count(md.n, 0);  // over all ranks: the same on every partition
+    for (auto node : md.surface_face_nodes) ++count[std::size_t(node)];
+    OverlapExchange(md, 1).sum(count);
+    face_mass_.assign(faces, 0.0);
+    for (std::size_t f = 0; f < faces; ++f)
+      for (auto k = md.surface_face_offsets[f]; k < md.surface_face_offsets[f + 1]; ++k) {
+        const auto I = std::size_t(md.surface_face_nodes[std::size_t(k)]);
+        face_mass_[f] += md.mass[I] / double(count[I]);
+      }
+    face_active_.reserve(faces);
+  }
   for (const auto& sf : surfaces_) {
     double b[6] = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
     for (std::size_t v = 0; v < sf.vertices.size() / 3; ++v)
@@ -125,7 +141,8 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     const double stroke = die ? mo->stroke(t) : 0.0, rate = die ? mo->rate(t) : 0.0;
     const double die_moved = die ? std::abs(stroke - stroke_last_[k]) : 0.0;
     if (die) stroke_last_[k] = stroke;
-    const double mu = die ? dies_[k].friction : 0.0;
+    // Coulomb at the slaves; with a shear factor the faces take the friction (face_friction)
+    const double mu = die && !(dies_[k].shear_factor > 0) ? dies_[k].friction : 0.0;
     const double margin = margin_;
     // a clearance under 1e-6 of the margin is the bound's round-off: the slave is looked up
     const double clear = 1e-6 * margin;  // only a slave at least this far out is skipped
@@ -175,7 +192,64 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
       active_.push_back(a);
     }
   }
+  if (shear_) face_friction(md, st, t, dt, largest);
   return largest;
+}
+
+void DieContact::face_velocity(const Model& md, const std::vector<double>& v, std::size_t f, double out[3]) const {
+  const auto k0 = md.surface_face_offsets[f], n = md.surface_face_offsets[f + 1] - k0;
+  out[0] = out[1] = out[2] = 0;
+  for (auto k = k0; k < k0 + n; ++k)
+    for (int i = 0; i < 3; ++i) out[i] += v[3 * std::size_t(md.surface_face_nodes[std::size_t(k)]) + i] / n;
+}
+
+void DieContact::face_friction(const Model& md, const State& st, double t, double dt, double& largest) {
+  face_active_.clear();
+  const std::size_t faces = face_mass_.size();
+  for (std::size_t f = 0; f < faces; ++f) {
+    const int n = md.surface_face_offsets[f + 1] - md.surface_face_offsets[f];
+    double centre[3];
+    const double area = surface_face(md, st, f, centre);
+    for (std::size_t k = 0; k < dies_.size(); ++k) {
+      const Die& die = dies_[k];
+      if (!(die.shear_factor > 0)) continue;
+      const double stroke = die.motion.stroke(t), rate = die.motion.rate(t);
+      double y[3];
+      for (int i = 0; i < 3; ++i) y[i] = centre[i] - stroke * die.motion.direction[i];
+      const DieHit hit = search_[k]->nearest(y);
+      if (!hit.found || hit.gap >= kFaceTouch * std::sqrt(area)) continue;
+      // the flow stress and the pressure on the face of its cell's points (Cauchy stress tau / J)
+      const auto c = std::size_t(md.surface_face_cell[f]);
+      const auto g0 = std::size_t(md.cell_points[c]), g1 = std::size_t(md.cell_points[c + 1]);
+      double flow = 0, pressure = 0;
+      for (auto g = g0; g < g1; ++g) {
+        const double rate_g = st.plastic_rate.empty() ? 0.0 : st.plastic_rate[g];
+        double y_g = md.material.yield(st.ep[g]), slope, slope_rate;
+        if (md.material.johnson_cook) md.material.flow(st.ep[g], rate_g, st.temperature[g], y_g, slope, slope_rate);
+        const double* tau = &st.tau[6 * g];
+        const double* nn = hit.normal;
+        const double tnn = tau[0] * nn[0] * nn[0] + tau[1] * nn[1] * nn[1] + tau[2] * nn[2] * nn[2] +
+                           2 * (tau[3] * nn[0] * nn[1] + tau[4] * nn[1] * nn[2] + tau[5] * nn[2] * nn[0]);
+        flow += y_g / double(g1 - g0);
+        pressure -= tnn / st.total_J(g) / double(g1 - g0);
+      }
+      const double tau = die.friction > 0 ? hybrid_friction_stress(die.friction, pressure, die.shear_factor, flow)
+                                           : shear_factor_stress(die.shear_factor, flow);
+      double v_rel[3], vt[3];
+      face_velocity(md, st.v, f, v_rel);
+      for (int i = 0; i < 3; ++i) v_rel[i] -= rate * die.motion.direction[i];
+      const double vt_norm = tangential_velocity(v_rel, hit.normal, vt);
+      FaceFriction ff{std::int32_t(f), std::int32_t(k), {}};
+      interface_friction(tau, area, face_mass_[f] * vt_norm / dt, vt, vt_norm, ff.force);
+      DieTotals& tot = totals_[k];
+      for (int i = 0; i < 3; ++i) {
+        tot.force[i] += ff.force[i];
+        largest = std::max(largest, std::abs(ff.force[i]) / n);
+      }
+      face_active_.push_back(ff);
+      break;  // one die a face
+    }
+  }
 }
 
 int DieContact::touching(const double x[3], double t, double tolerance) const {
@@ -232,9 +306,16 @@ void DieContact::add_to(const Model& md, State& st, const FixedScale& scale) con
       for (int i = 0; i < 3; ++i)
         st.partial[3 * std::size_t(r.cols[k]) + i] -= scale.fixed(r.N[k] * (a.normal_force[i] + a.friction_force[i]));
   }
+  for (const auto& ff : face_active_) {  // a face's friction, equally on its nodes' coefficients
+    const auto k0 = md.surface_face_offsets[std::size_t(ff.face)], k1 = md.surface_face_offsets[std::size_t(ff.face) + 1];
+    for (auto k = k0; k < k1; ++k)
+      for (int i = 0; i < 3; ++i)
+        st.partial[3 * std::size_t(md.surface_face_nodes[std::size_t(k)]) + i] -= scale.fixed(ff.force[i] / double(k1 - k0));
+  }
 }
 
-void DieContact::account(const Model& md, const State& st, const std::vector<double>& v_old, double dt_avg, double t) {
+void DieContact::account(const Model& md, State& st, const std::vector<double>& v_old, double dt_avg, double t) {
+  const bool conducting = !st.surface_heat.empty();
   for (const auto& a : active_) {
     const bool die = std::size_t(a.obstacle) < dies_.size();
     const double rate = die ? dies_[a.obstacle].motion.rate(t) : 0.0;
@@ -243,13 +324,48 @@ void DieContact::account(const Model& md, const State& st, const std::vector<dou
     double before[3], after[3];
     material_value(md, v_old, std::size_t(a.slave), before);
     material_value(md, st.v, std::size_t(a.slave), after);
+    double friction = 0;  // the heat friction made this step (J)
     for (int i = 0; i < 3; ++i) {
       const double vbar = 0.5 * (before[i] + after[i]), die_v = die ? rate * direction[i] : 0.0;
       const double f = a.normal_force[i] + a.friction_force[i];
       tot.contact_work += dt_avg * f * vbar;
       tot.press_work += dt_avg * f * die_v;
-      tot.friction_work -= dt_avg * a.friction_force[i] * (vbar - die_v);
+      friction -= dt_avg * a.friction_force[i] * (vbar - die_v);
     }
+    tot.friction_work += friction;
+    if (!conducting || !die || friction == 0) continue;
+    const double to_die = dies_[std::size_t(a.obstacle)].friction_heat_share * friction;
+    tot.heat += to_die;
+    if (std::size_t(a.slave) < particles_.size()) {
+      st.surface_heat[std::size_t(particles_[std::size_t(a.slave)])] += friction - to_die;
+    } else {
+      const std::size_t g = std::size_t(a.slave) - particles_.size();
+      const double rise = (friction - to_die) / (md.heat_capacity * md.weight[g]);
+      st.temperature[g] += rise, st.heat_pending[g] += rise;
+    }
+  }
+  for (const auto& ff : face_active_) {  // the faces' friction: its heat into the face's cell's points
+    const Die& die = dies_[std::size_t(ff.die)];
+    double before[3], after[3], friction = 0;
+    face_velocity(md, v_old, std::size_t(ff.face), before);
+    face_velocity(md, st.v, std::size_t(ff.face), after);
+    for (int i = 0; i < 3; ++i) {
+      const double vbar = 0.5 * (before[i] + after[i]), die_v = die.motion.rate(t) * die.motion.direction[i];
+      totals_[std::size_t(ff.die)].contact_work += dt_avg * ff.force[i] * vbar;
+      totals_[std::size_t(ff.die)].press_work += dt_avg * ff.force[i] * die_v;
+      friction -= dt_avg * ff.force[i] * (vbar - die_v);
+    }
+    DieTotals& tot = totals_[std::size_t(ff.die)];
+    tot.friction_work += friction;
+    if (!conducting || friction == 0) continue;
+    const double to_die = die.friction_heat_share * friction;
+    tot.heat += to_die;
+    const auto c = std::size_t(md.surface_face_cell[std::size_t(ff.face)]);
+    double volume = 0;
+    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) volume += md.weight[std::size_t(g)];
+    const double rise = (friction - to_die) / (md.heat_capacity * volume);
+    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g)
+      st.temperature[std::size_t(g)] += rise, st.heat_pending[std::size_t(g)] += rise;
   }
 }
 

@@ -48,8 +48,11 @@ class DieContact {
   // Returns the largest force contribution to one particle, for the fixed-point bound.
   double compute(const Model& md, const State& st, double t, double dt);
   void add_to(const Model& md, State& st, const FixedScale& scale) const;
-  // After the velocity update: the work of this step's contact forces with vbar.
-  void account(const Model& md, const State& st, const std::vector<double>& v_old, double dt_avg, double t);
+  // After the velocity update: the work of this step's contact forces with vbar. With heat
+  // conduction, the friction's heat is shared between the die (its `heat`) and the part: at a point
+  // slave its temperature rises, at a particle slave its surface_heat gathers it for the next thermal
+  // update.
+  void account(const Model& md, State& st, const std::vector<double>& v_old, double dt_avg, double t);
 
   // The box the part may move in: its initial box joined with every die's box at time t, grown by a
   // quarter of its largest side (room for the material the tools push out). A particle outside has
@@ -59,6 +62,10 @@ class DieContact {
   // What the point x (a surface face's centre) touches at time t, within `tolerance` outside it (or
   // any depth inside): a die's index, -2 for a rigid wall or a symmetry plane, -1 for nothing.
   int touching(const double x[3], double t, double tolerance) const;
+
+  // The most force contributions a particle can take from the boundary faces' friction (for the
+  // fixed-point headroom): none without a shear factor; a node's faces, bounded by 64.
+  int face_terms() const { return shear_ ? 64 : 0; }
 
   // One entry per die, one per rigid wall, then one for the symmetry planes (when the scene has any).
   const std::vector<DieTotals>& totals() const { return totals_; }
@@ -102,6 +109,21 @@ class DieContact {
   std::vector<double> clearance_;
   std::vector<double> u_last_, stroke_last_;  // at the last compute
   std::vector<Active> active_;        // reserved once: no allocation per step
+
+  // Shear factor and hybrid friction (dies with shear_factor > 0) on the part's boundary faces of this
+  // rank: a face whose centre is within a tenth of its size of such a die (or inside it) slides with
+  // the mean velocity of its nodes and takes tau = m k (or min(mu p, m k)) over its area, k and p from
+  // its cell's points, at most the force that stops its sliding in one step (its nodes' masses, each
+  // shared among the node's boundary faces); the force is spread equally over its nodes.
+  struct FaceFriction {
+    std::int32_t face, die;
+    double force[3];
+  };
+  void face_friction(const Model& md, const State& st, double t, double dt, double& largest);
+  void face_velocity(const Model& md, const std::vector<double>& v, std::size_t f, double out[3]) const;
+  std::vector<double> face_mass_;  // per boundary face: sum over its nodes of m_I / (the node's face count)
+  std::vector<FaceFriction> face_active_;  // reserved once
+  bool shear_ = false;                     // a die has shear_factor > 0
   std::vector<DieTotals> totals_;
   std::vector<double> die_box_;  // per die at t = 0: lo[3], hi[3]
   double penalty_scale_, margin_ = 0;

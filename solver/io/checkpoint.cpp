@@ -47,8 +47,10 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
       f.write("points/J_last", st.J_last);
     }
     if (!st.temperature.empty()) f.write("points/temperature", st.temperature);
+    if (!st.plastic_rate.empty()) f.write("points/plastic_rate", st.plastic_rate);
     if (!st.particle_temperature.empty()) {  // conduction (thermal/heat_transfer.hpp)
       f.write("particles/temperature", st.particle_temperature);
+      f.write("particles/surface_heat", st.surface_heat);
       f.write("points/heat_pending", st.heat_pending);
       f.write("thermal/scalars", std::vector<double>{st.thermal_t, st.thermal_dt, st.ambient_heat});
       f.write("thermal/integers", std::vector<std::int64_t>{st.thermal_step, st.thermal_updates});
@@ -74,8 +76,10 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
                check.read<double>("points/ep") == st.ep && check.read<double>("points/wp") == st.wp &&
                (st.q.empty() || (check.read<double>("points/q") == st.q && check.read<double>("points/J_last") == st.J_last)) &&
                (st.temperature.empty() || check.read<double>("points/temperature") == st.temperature) &&
+               (st.plastic_rate.empty() || check.read<double>("points/plastic_rate") == st.plastic_rate) &&
                (st.particle_temperature.empty() || (check.read<double>("particles/temperature") == st.particle_temperature &&
                                                     check.read<double>("points/heat_pending") == st.heat_pending &&
+                                                    check.read<double>("particles/surface_heat") == st.surface_heat &&
                                                     check.read<double>("thermal/die_heat").size() == dies.size())) &&
                (st.reference_updates == 0 ||
                 (check.read<double>("particles/u_ref", 3) == st.u_ref && check.read<double>("points/X", 3) == md.point_X &&
@@ -180,12 +184,20 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
     st.temperature = f.read<double>("points/temperature");
     if (st.temperature.size() != md.m) throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
   }
-  std::vector<double> T;  // the particles' temperature coefficients (conduction)
+  if (!st.plastic_rate.empty()) {  // shear friction's flow stress takes the rate
+    if (!f.exists("points/plastic_rate"))
+      throw Error(path + ": the checkpoint holds no plastic strain rates (written without a die's shear_factor); "
+                         "restart with the same scene");
+    st.plastic_rate = f.read<double>("points/plastic_rate");
+    if (st.plastic_rate.size() != md.m) throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
+  }
+  std::vector<double> T, friction;  // the particles' temperature coefficients and friction heat (conduction)
   if (!st.particle_temperature.empty()) {
     if (!f.exists("thermal"))
       throw Error(path + ": the checkpoint holds no heat conduction state (written without material.conductivity); "
                          "restart with the same scene");
     T = f.read<double>("particles/temperature");
+    friction = f.read<double>("particles/surface_heat");
     st.heat_pending = f.read<double>("points/heat_pending");
     const auto ts = f.read<double>("thermal/scalars");
     const auto ti = f.read<std::int64_t>("thermal/integers");
@@ -199,8 +211,8 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
   const auto u = f.read<double>("particles/u", 3), v = f.read<double>("particles/v", 3);
   if (updates == 0) {
     st.u = u, st.v = v;
-    if (!T.empty()) st.particle_temperature = T;
-    if (st.u.size() != 3 * md.n || st.v.size() != 3 * md.n || (!T.empty() && T.size() != md.n))
+    if (!T.empty()) st.particle_temperature = T, st.surface_heat = friction;
+    if (st.u.size() != 3 * md.n || st.v.size() != 3 * md.n || (!T.empty() && (T.size() != md.n || friction.size() != md.n)))
       throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
     return;
   }
@@ -211,7 +223,7 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
   md.point_X = f.read<double>("points/X", 3);
   st.J_ref = f.read<double>("points/J_ref");
   if (u.size() != 3 * gid.size() || v.size() != u.size() || u_ref.size() != u.size() || md.point_X.size() != 3 * md.m ||
-      st.J_ref.size() != md.m || (!T.empty() && T.size() != gid.size()))
+      st.J_ref.size() != md.m || (!T.empty() && (T.size() != gid.size() || friction.size() != gid.size())))
     throw Error(path + ": checkpoint datasets disagree with each other's counts");
   st.u_ref.assign(3 * md.n, 0.0);
   std::size_t k = 0;
@@ -222,7 +234,7 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
       throw Error(path + ": owned particle " + std::to_string(md.global_id[I]) + " is missing from the checkpoint");
     if (found) {
       for (int i = 0; i < 3; ++i) st.u[3 * I + i] = u[3 * k + i], st.v[3 * I + i] = v[3 * k + i], st.u_ref[3 * I + i] = u_ref[3 * k + i];
-      if (!T.empty()) st.particle_temperature[I] = T[k];
+      if (!T.empty()) st.particle_temperature[I] = T[k], st.surface_heat[I] = friction[k];
     }
   }
   st.reference_updates = updates;

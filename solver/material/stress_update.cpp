@@ -99,6 +99,7 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
         const std::size_t p = g + l;
         double* t = &st.tau[6 * p];
         for (int i = 0; i < 6; ++i) t[i] = b.tau.v[i][l], st.cp_inv[6 * p + i] = b.cp_inv.v[i][l];
+        if (!st.plastic_rate.empty()) st.plastic_rate[p] = b.dt > 0 ? (b.ep[l] - st.ep[p]) / b.dt : 0.0;
         st.ep[p] = b.ep[l];
         st.psi[p] = b.psi[l];
         st.wp[p] += b.dissipation[l];

@@ -14,8 +14,8 @@ namespace rk {
 namespace {
 
 // What every rank learns about each owned particle: global id, X (t = 0), d, v, d^ref, volume,
-// spacing at t = 0, flags, owner, temperature coefficient (with conduction).
-enum { kGid, kX = 1, kU = 4, kV = 7, kRef = 10, kVolume = 13, kSpacing0, kFlags, kOwner, kTemperature, kRecord };
+// spacing at t = 0, flags, owner, temperature coefficient and friction heat (with conduction).
+enum { kGid, kX = 1, kU = 4, kV = 7, kRef = 10, kVolume = 13, kSpacing0, kFlags, kOwner, kTemperature, kSurfaceHeat, kRecord };
 
 std::vector<double> owned_records(const Model& md, const State& st) {
   std::vector<double> out;
@@ -33,6 +33,7 @@ std::vector<double> owned_records(const Model& md, const State& st) {
     r[kFlags] = md.surface[I] ? double(kSurface) : 0.0;
     r[kOwner] = md.rank;
     r[kTemperature] = st.particle_temperature.empty() ? 0.0 : st.particle_temperature[I];
+    r[kSurfaceHeat] = st.surface_heat.empty() ? 0.0 : st.surface_heat[I];
     out.insert(out.end(), r, r + kRecord);
   }
   return out;
@@ -221,7 +222,7 @@ void rebuild_on_reference(Model& md, State& st, const Scene& scene, const Comm& 
   sub.cell_global_id = md.cell_global_id;
   sub.cell_node_offsets = md.cell_node_offsets;
   for (auto node : md.cell_nodes) sub.cell_nodes.push_back(index[md.global_id[node]]);
-  sub.surface_face_offsets = md.surface_face_offsets;
+  sub.surface_face_offsets = md.surface_face_offsets, sub.surface_face_cell = md.surface_face_cell;
   for (auto node : md.surface_face_nodes) sub.surface_face_nodes.push_back(index[md.global_id[node]]);
   sub.point_X = md.point_X;
   sub.point_weight = md.weight;
@@ -243,7 +244,11 @@ void rebuild_on_reference(Model& md, State& st, const Scene& scene, const Comm& 
     }
   if (!st.particle_temperature.empty()) {
     st.particle_temperature.resize(next.n);
-    for (std::size_t k = 0; k < next.n; ++k) st.particle_temperature[k] = record[local[k]][kTemperature];
+    st.surface_heat.assign(next.n, 0.0);
+    for (std::size_t k = 0; k < next.n; ++k) {
+      st.particle_temperature[k] = record[local[k]][kTemperature];
+      if (next.owned[k]) st.surface_heat[k] = record[local[k]][kSurfaceHeat];  // held by the owner only
+    }
   }
   st.force.assign(3 * next.n, 0.0);
   st.partial.assign(3 * next.n, Fixed(0));

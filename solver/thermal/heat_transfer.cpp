@@ -5,15 +5,12 @@
 #include <string>
 
 #include "rk/internal_force.hpp"
+#include "rk/surface_faces.hpp"
 #include "thermal/heat_transfer_laws.hpp"
 
 namespace rk {
 namespace {
 
-// A face touches what lies within this fraction of its size (sqrt of its area) outside it: the
-// penalty contact leaves the nodes of a face on a die a little inside it, and a face at the edge of
-// the contact, with a node lifting off, still exchanges heat across the thin gap.
-constexpr double kTouch = 0.1;
 // The explicit Euler step's margin under its limit 2 / lambda_max (lambda_max bounded by Gershgorin).
 constexpr double kSafety = 0.9;
 
@@ -87,6 +84,7 @@ HeatTransfer::HeatTransfer(const Model& md, const Scene& scene, const Comm& comm
 
 void HeatTransfer::start(const Model& md, State& st, DieContact& dies, const Comm& comm) {
   st.particle_temperature.assign(md.n, md.initial_temperature);
+  st.surface_heat.assign(md.n, 0.0);
   for (std::size_t q = 0; q < fixed_particles_.size(); ++q) st.particle_temperature[fixed_particles_[q]] = fixed_temperature_[q];
   st.heat_pending.assign(md.m, 0.0);
   for (std::size_t g = 0; g < md.m; ++g) st.temperature[g] = point_temperature(md, st, g);
@@ -103,16 +101,20 @@ void HeatTransfer::reproject(const Model& md, State& st, const Comm& comm) {
   for (std::size_t g = 0; g < md.m; ++g)
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
       most = std::max(most, rho_c * md.weight[g] * std::abs(md.N[std::size_t(k)] * st.temperature[g]));
+  for (std::size_t I = 0; I < md.n; ++I) most = std::max(most, std::abs(st.surface_heat[I]));
   comm.max(&most, 1);
   const FixedScale scale = FixedScale::for_bound(most, headroom_);
   std::fill(partial_.begin(), partial_.end(), Fixed(0));
   for (std::size_t g = 0; g < md.m; ++g)
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
       partial_[2 * std::size_t(md.nbr[k])] += scale.fixed(rho_c * md.weight[g] * md.N[std::size_t(k)] * st.temperature[g]);
+  for (std::size_t I = 0; I < md.n; ++I)
+    if (md.owned[I]) partial_[2 * I] += scale.fixed(st.surface_heat[I]);
   exchange_->sum(partial_);
   for (std::size_t I = 0; I < md.n; ++I) st.particle_temperature[I] = scale.real(partial_[2 * I]) / capacity_[I];
   for (std::size_t q = 0; q < fixed_particles_.size(); ++q) st.particle_temperature[fixed_particles_[q]] = fixed_temperature_[q];
   std::fill(st.heat_pending.begin(), st.heat_pending.end(), 0.0);
+  std::fill(st.surface_heat.begin(), st.surface_heat.end(), 0.0);
   for (std::size_t g = 0; g < md.m; ++g) st.temperature[g] = point_temperature(md, st, g);
 }
 
@@ -143,6 +145,7 @@ void HeatTransfer::update(const Model& md, State& st, DieContact& dies, const Co
   }
   st.thermal_dt = stable_step(md, comm);
   std::fill(st.heat_pending.begin(), st.heat_pending.end(), 0.0);
+  std::fill(st.surface_heat.begin(), st.surface_heat.end(), 0.0);
   for (std::size_t g = 0; g < md.m; ++g) st.temperature[g] = point_temperature(md, st, g);
   st.thermal_t = st.t, st.thermal_step = st.step;
   ++st.thermal_updates;
@@ -151,23 +154,13 @@ void HeatTransfer::update(const Model& md, State& st, DieContact& dies, const Co
 void HeatTransfer::classify_faces(const Model& md, const State& st, const DieContact& dies, double t) {
   for (std::size_t f = 0; f < faces_.size(); ++f) {
     const auto k0 = md.surface_face_offsets[f], n = md.surface_face_offsets[f + 1] - k0;
-    double x[4][3], centre[3] = {0, 0, 0}, T = 0;
-    for (int a = 0; a < n; ++a) {
-      const auto I = std::size_t(md.surface_face_nodes[std::size_t(k0 + a)]);
-      for (int i = 0; i < 3; ++i) x[a][i] = md.X[3 * I + i] + st.u[3 * I + i], centre[i] += x[a][i] / n;
-      T += st.particle_temperature[I] / n;
-    }
-    // area vector: half the cross product of the diagonals (a quadrilateral) or of two edges (a triangle)
-    const int p = n == 4 ? 3 : 2, q = n == 4 ? 1 : 0;
-    double d1[3], d2[3];
-    for (int i = 0; i < 3; ++i) d1[i] = x[2][i] - x[0][i], d2[i] = x[p][i] - x[q][i];
-    if (n == 3)
-      for (int i = 0; i < 3; ++i) d1[i] = x[1][i] - x[0][i], d2[i] = x[2][i] - x[0][i];
-    const double a[3] = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2], d1[0] * d2[1] - d1[1] * d2[0]};
+    double centre[3], T = 0;
+    for (auto k = k0; k < k0 + n; ++k) T += st.particle_temperature[std::size_t(md.surface_face_nodes[std::size_t(k)])] / n;
+    const double area = surface_face(md, st, f, centre);
     FaceState& face = faces_[f];
-    face.area = 0.5 * std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    face.area = area;
     face.T = T;
-    face.die = dies.empty() ? -1 : dies.touching(centre, t, kTouch * std::sqrt(face.area));
+    face.die = dies.empty() ? -1 : dies.touching(centre, t, kFaceTouch * std::sqrt(face.area));
   }
 }
 
@@ -210,6 +203,8 @@ void HeatTransfer::assemble(const Model& md, State& st, DieContact& dies, double
     return f.area * (convection_flux(air.convection, air.ambient_temperature, f.T) +
                      radiation_flux(air.emissivity, air.ambient_temperature, f.T));
   };
+  if (pending)  // the friction's heat at the particle slaves
+    for (std::size_t I = 0; I < md.n; ++I) most[0] = std::max(most[0], std::abs(st.surface_heat[I]));
   for (const FaceState& f : faces_) {
     double c = 0;
     const double flow = face_flow(f, c);
@@ -230,6 +225,8 @@ void HeatTransfer::assemble(const Model& md, State& st, DieContact& dies, double
       if (bound) acc[1] += conductance.fixed(spread_[g] * std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
     }
   }
+  if (pending)
+    for (std::size_t I = 0; I < md.n; ++I) partial_[2 * I] += heat.fixed(st.surface_heat[I]);
   for (std::size_t f = 0; f < faces_.size(); ++f) {
     double c = 0;
     const double flow = face_flow(faces_[f], c);

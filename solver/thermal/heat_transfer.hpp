@@ -4,6 +4,7 @@
 //   C_I dT_I/dt = - sum_g w_g grad N_I(X_g) . (k J C^-1 grad T^h)(X_g)      conduction, on the reference
 //                 + sum_f A_f q_f / n_f                                        surface faces f with I a node
 //                 + sum_g N_I(X_g) w_g rho0 c dT_g/dt                          the plastic work's heat
+//                 + the part's share of the friction's heat at I as a contact slave
 // with C_I = rho0 c sum_g w_g N_I(X_g) (so sum_I C_I T_I is the part's heat content exactly), q_f the
 // flux into the part at the face's temperature (thermal/heat_transfer_laws.hpp: contact with a die
 // where the face touches one, else convection and radiation to the ambient; none on a symmetry plane)
@@ -42,7 +43,7 @@ class HeatTransfer {
   void start(const Model& md, State& st, DieContact& dies, const Comm& comm);
 
   // After a reference update (the shape functions and so the capacities changed): the coefficients
-  // of the points' temperatures (their pending heat included) projected onto the new shapes, lumped,
+  // of the points' temperatures (their pending heat, and the particles' friction heat, included) projected onto the new shapes, lumped,
   // C_I T_I = rho0 c sum_g w_g N_I(X_g) T_g, so the part's heat content sum_I C_I T_I = rho0 c
   // sum_g w_g T_g is kept exactly; the points' T^h follow. Collective.
   void reproject(const Model& md, State& st, const Comm& comm);

@@ -1,8 +1,10 @@
 """Hot upsetting (geometry/upsetting/scene_hot.yaml: AISI 1045 at 1150 C, dies at 250 C, Johnson-Cook,
-conduction, die contact conductance, convection and radiation, thermal expansion, a reference update)
+conduction, die contact conductance, convection and radiation, thermal expansion, shear friction,
+a reference update)
 at 2.5 mm spacing to 0.3 s of its 1 s stroke:
 - the heat balances: the part's heat content change (rho c V times its mean temperature change) is
-  the plastic work's heat beta W_p less the heat the die and the air took, to the history's digits
+  the plastic work's heat beta W_p and the friction's work (shear factor 0.3) less the heat the die
+  (its conductance and its share of the friction's heat) and the air took, to the history's digits
   (conduction moves heat and keeps it; a reference update projects the temperatures so that it keeps
   the heat content);
 - the die chills the part's top: the coolest point sits on it, far below the start, the hottest
@@ -53,11 +55,12 @@ one = run("hot_r1", 1)
 r = last_row(one)
 V = json.loads((one / "prep.json").read_text())["volume_m3"]
 content = rho * c * V * (float(r["temperature_mean"]) - T0)
-sources = beta * float(r["plastic_work"]) - float(r["die.heat"]) - float(r["heat_to_ambient"])
+sources = beta * float(r["plastic_work"]) + float(r["friction_work"]) - float(r["die.heat"]) - float(r["heat_to_ambient"])
 out = float(r["die.heat"]) + float(r["heat_to_ambient"])
 # measured 0 to the printed digits (1e-10 of the heat out); 1e-6 leaves the 10 digits of history.csv
 rkcase.check(abs(content - sources) < 1e-6 * out,
-             f"heat content change {content:.4f} J = beta W_p - Q_die - Q_air = {sources:.4f} J (the die took {r['die.heat']} J)")
+             f"heat content change {content:.4f} J = beta W_p + W_friction - Q_die - Q_air = {sources:.4f} J "
+             f"(friction {float(r['friction_work']):.3f} J, the die took {r['die.heat']} J)")
 x, T = final(one)
 top = x[:, 2] > np.percentile(x[:, 2], 90)
 # measured: coolest 1177 K on the die face, hottest 1431 K inside (the start 1423 K)
@@ -70,13 +73,14 @@ rkcase.check(summary["reference_updates"] >= 1 and summary["thermal_updates"] < 
 
 every = run("hot_every_step", 1, ["thermal.max_steps_per_update=1"])
 e = last_row(every)
-# measured 2026-12-02: mean 0.012 K, die heat 0.026 %, air heat 0.002 % apart (the explicit step's error)
-for key, tol in (("temperature_mean", 0.05), ("temperature_min", 0.5)):
+# measured 2026-12-02: mean 0.025 K, coolest point 0.34 K, die heat 5.6e-4, air heat 1.5e-5 apart (the
+# explicit step's error); the bounds about twice those
+for key, tol in (("temperature_mean", 0.05), ("temperature_min", 0.7)):
     gap = abs(float(e[key]) - float(r[key]))
     rkcase.check(gap < tol, f"{key}: an update every step and the default agree within {gap:.3f} K (< {tol})")
 for key in ("die.heat", "heat_to_ambient"):
     gap = abs(float(e[key]) / float(r[key]) - 1)
-    rkcase.check(gap < 1e-3, f"{key}: an update every step and the default agree within {gap:.1e} (< 1e-3)")
+    rkcase.check(gap < 1.2e-3, f"{key}: an update every step and the default agree within {gap:.1e} (< 1.2e-3)")
 
 reference = final(one)
 for ranks in (2, 3):

@@ -63,3 +63,33 @@ TEST(ContactLaws, NoFrictionWithoutMuOrSliding) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(ShearFriction, ShearFactorAndHybridStressesAreTheForgingLaws) {
+  const double flow = 100e6, k = flow / std::sqrt(3.0);
+  EXPECT_DOUBLE_EQ(rk::shear_factor_stress(1.0, flow), k);  // sticking: the material's shear yield stress
+  EXPECT_DOUBLE_EQ(rk::shear_factor_stress(0.3, flow), 0.3 * k);
+  EXPECT_EQ(rk::shear_factor_stress(0.0, flow), 0.0);
+  // hybrid: Coulomb below the pressure where mu p reaches m k, m k above it
+  const double m = 0.4, mu = 0.2, p_switch = m * k / mu;
+  EXPECT_DOUBLE_EQ(rk::hybrid_friction_stress(mu, 0.5 * p_switch, m, flow), mu * 0.5 * p_switch);
+  EXPECT_DOUBLE_EQ(rk::hybrid_friction_stress(mu, 2 * p_switch, m, flow), m * k);
+  EXPECT_EQ(rk::hybrid_friction_stress(mu, -1e6, m, flow), 0.0);  // a face pulled off its die
+}
+
+TEST(ShearFriction, TheForceIsTauTimesTheAreaAgainstTheSlidingUpToTheStickForce) {
+  const double vt[3] = {3, 4, 0};  // |vt| = 5
+  double f[3];
+  rk::interface_friction(2e6, 1e-4, 1e9, vt, 5, f);  // slipping: tau A = 200 N
+  EXPECT_DOUBLE_EQ(f[0], -200 * 0.6);
+  EXPECT_DOUBLE_EQ(f[1], -200 * 0.8);
+  EXPECT_EQ(f[2], 0);
+  rk::interface_friction(2e6, 1e-4, 50, vt, 5, f);  // sticking: the force that stops it in one step
+  EXPECT_DOUBLE_EQ(std::hypot(f[0], f[1]), 50);
+  const double at_rest[3] = {0, 0, 0};
+  rk::interface_friction(2e6, 1e-4, 1e9, at_rest, 0, f);
+  EXPECT_EQ(f[0] * f[0] + f[1] * f[1] + f[2] * f[2], 0);
+}
+
+}  // namespace
