@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -600,6 +601,30 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
 }  // namespace rk
 
 namespace rk {
+
+std::vector<std::string> temperature_warnings(const Scene& s) {
+  std::vector<std::string> out;
+  if (!s.material.thermal()) return out;
+  const double melt = s.material.melting_temperature;
+  auto check = [&](const std::string& key, double T) {
+    char text[240];
+    if (T < 273.15) {
+      std::snprintf(text, sizeof text, "%s = %g K is %.0f C: temperatures are in kelvin (a Celsius value?)", key.c_str(), T,
+                    T - 273.15);
+      out.push_back(text);
+    } else if (melt > 0 && T >= melt) {
+      std::snprintf(text, sizeof text, "%s = %g K is at or above the material's melting temperature %g K (a slip of units?)",
+                    key.c_str(), T, melt);
+      out.push_back(text);
+    }
+  };
+  check("initial_conditions.temperature", s.initial.temperature);
+  if (!s.material.conducting()) return out;
+  check("thermal.ambient_temperature", s.thermal.ambient_temperature);
+  for (const auto& f : s.thermal.fixed_faces) check("thermal.fixed_faces '" + f.name + "'.temperature", f.temperature);
+  for (const auto& d : s.dies) check("dies '" + d.name + "'.temperature", d.temperature);
+  return out;
+}
 
 double DieMotion::stroke(double t) const {
   if (curve.empty()) return speed * t;

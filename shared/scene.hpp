@@ -202,6 +202,11 @@ enum class Side { prep, solve };
 Scene load_scene(const std::filesystem::path& file, const std::vector<Override>& overrides = {},
                  Side side = Side::prep);
 
+// Suspicious but legal temperatures (kelvin expected): one below 273.15 K, freezing (a die at 250 C
+// written as 250 is -23 C; no forging runs below freezing), a die or the air at or above the material's melting temperature
+// (Johnson-Cook). Each names its key.
+std::vector<std::string> temperature_warnings(const Scene& scene);
+
 // Basis requirements: the smallest dilation with which the moment matrix stays regular.
 double minimum_dilation(const std::string& basis);
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -425,6 +426,8 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   const std::string first_die = scene_.dies.empty() ? "" : scene_.dies[0].name;
   progress_ = std::make_unique<Progress>(opt.quiet, comm, scene_.time.end, history_->columns(), first_die, st_);
   progress_->banner(opt.restart, setup_s_, md_.mass_scaling);
+  if (comm.rank() == 0)  // suspicious temperatures before the run, not only in its report
+    for (const std::string& w : temperature_warnings(scene_)) std::fprintf(stderr, "rksolve: warning: %s\n", w.c_str());
   g_interrupted = 0;
   std::signal(SIGINT, request_stop);
   std::signal(SIGTERM, request_stop);

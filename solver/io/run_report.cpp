@@ -45,6 +45,7 @@ RunSummary write_run_report(const std::string& case_dir, const Scene& scene, con
                            std::to_string(d) + "].unit), its position and its motion's direction");
   if (comm.rank() != 0) return s;
   for (const auto& w : s.warnings) std::fprintf(stderr, "rksolve: warning: %s\n", w.c_str());
+  for (const auto& w : temperature_warnings(scene)) s.warnings.push_back(w);  // printed at the start
   for (int p = 0; p < kPhaseCount; ++p) s.phases[kPhaseNames[p]] = {lo[p], hi[p]};
   const double loop_s = wall - counts.setup_s;
   s.steps = st.step;

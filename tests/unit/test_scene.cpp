@@ -139,3 +139,32 @@ TEST(Scene, NodalIntegrationRefusesReferenceUpdates) {  // its smoothing cells a
       << e;
   EXPECT_EQ(error_of(kGood, {rk::parse_override("discretization.integration=nodal")}), "");
 }
+
+namespace {
+
+// A hot part: specific heat, conduction, a die and the air (no CAD is read by load_scene's checks)
+std::string hot(const std::string& die_temperature) {
+  return replace(kGood, "  yield_stress: 400.0e6\n",
+                 "  yield_stress: 400.0e6\n  specific_heat: 460\n  conductivity: 45\ninitial_conditions:\n"
+                 "  temperature: 1423.15\nthermal:\n  ambient_temperature: 293.15\ndies:\n  - name: top\n    cad: die.geo\n"
+                 "    temperature: " + die_temperature + "\n    heat_transfer: 1.0e4\n    motion: {direction: [0, 0, -1], speed: 0.01}\n");
+}
+
+TEST(Scene, ACelsiusLookingTemperatureIsWarnedByItsKey) {
+  EXPECT_TRUE(rk::temperature_warnings(rk::load_scene(write_scene(hot("523.15")))).empty());
+  const auto w = rk::temperature_warnings(rk::load_scene(write_scene(hot("250"))));  // 250 C written as kelvin
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("dies 'top'.temperature = 250 K is -23 C"), std::string::npos) << w[0];
+}
+
+TEST(Scene, ThermalKeysNeedTheirPhysics) {
+  EXPECT_NE(error_of(replace(kGood, "  yield_stress: 400.0e6\n", "  yield_stress: 400.0e6\n  conductivity: 45\n"))
+                .find("'material.conductivity' needs 'material.specific_heat'"),
+            std::string::npos);
+  EXPECT_NE(error_of(kGood + std::string("thermal:\n  convection: 10\n")).find("section 'thermal' needs 'material.conductivity'"),
+            std::string::npos);
+  EXPECT_NE(error_of(replace(hot("523.15"), "    heat_transfer: 1.0e4\n", "    heat_transfer: -1\n")).find("heat_transfer"),
+            std::string::npos);
+}
+
+}  // namespace
