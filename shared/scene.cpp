@@ -380,14 +380,33 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     o.jitter = d.number("jitter", o.jitter, {0, 0.5, false, true});
     d.done();
   }
-  {
+  // material.library: a file of material keys (geometry/materials/), relative to the scene; the
+  // scene's own material keys are read over it
+  std::string library;
+  if (YAML::Node mat = root["material"]; mat && mat.IsMap() && mat["library"]) {
+    std::filesystem::path p(mat["library"].as<std::string>());
+    library = (p.is_absolute() ? p : (s.dir / p)).lexically_normal().string();
+    YAML::Node keys;
+    try {
+      keys = YAML::LoadFile(library);
+    } catch (const YAML::Exception&) {
+      throw Error(where(name, mat["library"], "material.library") + ": key 'material.library': cannot read '" + library + "'");
+    }
+    if (!keys.IsMap() || !keys["material"] || !keys["material"].IsMap())
+      throw Error(library + ": a material library file holds one map, 'material:' with its keys");
+    for (auto it = keys["material"].begin(); it != keys["material"].end(); ++it)
+      if (!mat[it->first.as<std::string>()]) mat[it->first.as<std::string>()] = it->second;
+  }
+  try {
     Section m = top.section("material", true);
     auto& o = s.material;
-    std::string model = m.text("model", std::nullopt, {"elastic", "j2_linear", "j2_power", "johnson_cook"});
-    o.model = model == "elastic"        ? MaterialModel::elastic
-              : model == "j2_power"     ? MaterialModel::j2_power
-              : model == "johnson_cook" ? MaterialModel::johnson_cook
-                                        : MaterialModel::j2_linear;
+    if (!library.empty()) m.text("library", std::nullopt), m.record("library", library);
+    std::string model = m.text("model", std::nullopt, {"elastic", "j2_linear", "j2_power", "johnson_cook", "hansel_spittel"});
+    o.model = model == "elastic"          ? MaterialModel::elastic
+              : model == "j2_power"       ? MaterialModel::j2_power
+              : model == "johnson_cook"   ? MaterialModel::johnson_cook
+              : model == "hansel_spittel" ? MaterialModel::hansel_spittel
+                                          : MaterialModel::j2_linear;
     o.density = m.number("density", std::nullopt, {0, 1e6, true, false});
     o.youngs_modulus = m.number("youngs_modulus", std::nullopt, {0, 1e13, true, false});
     o.poisson_ratio = m.number("poisson_ratio", std::nullopt, {-1, 0.5, true, true});
@@ -411,8 +430,18 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
       o.melting_temperature = m.number("melting_temperature", std::nullopt, {0, 5000, true, false});
       o.room_temperature = m.number("room_temperature", 293.15, {0, o.melting_temperature, true, false});
     }
-    // the thermal keys of every model: Johnson-Cook's flow stress needs the temperature
-    const bool jc = o.model == MaterialModel::johnson_cook;
+    if (o.model == MaterialModel::hansel_spittel) {  // Hansel & Spittel (1979), T in Celsius in the law
+      o.hs_a = m.number("coefficient", std::nullopt, {0, 1e13, true, false});
+      const char* names[9] = {"m1", "m2", "m3", "m4", "m5", "", "m7", "m8", "m9"};
+      for (int i = 0; i < 9; ++i)
+        if (i != 5) o.hs_m[i] = m.number(names[i], i < 3 ? std::nullopt : std::optional<double>(0.0), {-100, 100});
+      o.minimum_strain = m.number("minimum_strain", 0.01, {0, 1, true, false});
+      o.minimum_strain_rate = m.number("minimum_strain_rate", 0.01, {0, 1e6, true, false});
+      o.melting_temperature = m.number("melting_temperature", 0.0, {0, 5000});
+      o.room_temperature = m.number("room_temperature", 293.15, {0, 1e4, true, false});
+    }
+    // the thermal keys of every model: the rate-dependent laws' flow stress needs the temperature
+    const bool jc = o.model == MaterialModel::johnson_cook || o.model == MaterialModel::hansel_spittel;
     o.specific_heat = m.number("specific_heat", jc ? std::nullopt : std::optional<double>(0.0), {0, 1e5, jc, false});
     if (o.thermal()) {
       o.taylor_quinney = m.number("taylor_quinney", 0.9, {0, 1});
@@ -424,6 +453,9 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
           throw Error(name + ": key 'material." + key + "' needs 'material.specific_heat' (the temperature it acts on)");
     }
     m.done();
+  } catch (const Error& e) {  // a key the library gave: name the library too
+    if (library.empty()) throw;
+    throw Error(std::string(e.what()) + " (with material.library " + library + ")");
   }
   {
     Section ic = top.section("initial_conditions");

@@ -57,7 +57,7 @@ struct EssentialFace {
   DieMotion motion;
 };
 
-enum class MaterialModel { elastic, j2_linear, j2_power, johnson_cook };
+enum class MaterialModel { elastic, j2_linear, j2_power, johnson_cook, hansel_spittel };
 
 struct Material {
   MaterialModel model = MaterialModel::j2_linear;
@@ -71,7 +71,10 @@ struct Material {
   double hardening_coefficient = 0, hardening_exponent = 1;  // B (Pa), n
   double rate_coefficient = 0, reference_strain_rate = 1;    // C, rate0 (1/s)
   double thermal_exponent = 1;                               // m
-  double room_temperature = 293.15, melting_temperature = 0; // K
+  double room_temperature = 293.15, melting_temperature = 0; // K (0: none given)
+  // Hansel-Spittel: A (Pa) and m1 .. m9 (no m6) with T in Celsius in the law; strain and rate minima
+  double hs_a = 0, hs_m[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // hs_m[i - 1] = m_i (hs_m[5] unused)
+  double minimum_strain = 0.01, minimum_strain_rate = 0.01;
   // temperature (any model; Johnson-Cook requires it): heating by plastic work, dT = taylor_quinney
   // dW_p / (rho c); conduction through the part when conductivity > 0 (else adiabatic); the thermal
   // strain alpha (T - T0), T0 the initial temperature

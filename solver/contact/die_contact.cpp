@@ -225,7 +225,7 @@ void DieContact::face_friction(const Model& md, const State& st, double t, doubl
       for (auto g = g0; g < g1; ++g) {
         const double rate_g = st.plastic_rate.empty() ? 0.0 : st.plastic_rate[g];
         double y_g = md.material.yield(st.ep[g]), slope, slope_rate;
-        if (md.material.johnson_cook) md.material.flow(st.ep[g], rate_g, st.temperature[g], y_g, slope, slope_rate);
+        if (md.material.rate_dependent()) md.material.flow(st.ep[g], rate_g, st.temperature[g], y_g, slope, slope_rate);
         const double* tau = &st.tau[6 * g];
         const double* nn = hit.normal;
         const double tnn = tau[0] * nn[0] * nn[0] + tau[1] * nn[1] * nn[1] + tau[2] * nn[2] * nn[2] +

@@ -60,11 +60,13 @@ void set_lane(Sym& a, int l, const Eigen::Matrix3d& m) {
   a.v[3][l] = m(0, 1), a.v[4][l] = m(1, 2), a.v[5][l] = m(2, 0);
 }
 
-// Johnson-Cook's return for one point: q - 3G dg = sigma_y(ep + dg, dg / dt, T). The residual falls
-// strictly with dg (sigma_y grows with strain and rate), and at dg0 = (q - sigma_y(ep, 0, T)) / 3G it
-// is <= 0, so the root lies in [0, dg0]: Newton in log dgamma from dg0, kept in the bracket by
-// bisection (docs/decisions.md, "Johnson-Cook": 6.8 iterations a return on the Johnson-Cook Taylor bar).
-double johnson_cook_return(const J2Params& p, double q, double ep, double thermal, double dt) {
+// The rate-dependent return for one point: q - 3G dg = sigma_y(ep + dg, dg / dt, T). The residual falls
+// strictly with dg where sigma_y grows with strain and rate, and at dg0 = (q - sigma_y(ep, 0, T)) / 3G
+// it is <= 0, so the root lies in [0, dg0]: Newton in log dgamma from dg0, kept in the bracket by
+// bisection (docs/decisions.md, "Johnson-Cook": 6.8 iterations a return on the Johnson-Cook Taylor
+// bar). A law that softens with strain (Hansel-Spittel's m7 < 0) below its least rate can have its
+// root just past dg0: the bracket then widens.
+double rate_dependent_return(const J2Params& p, double q, double ep, const J2Params::AtTemperature& thermal, double dt) {
   double y, h, hr;
   p.flow_at(ep, 0.0, thermal, y, h, hr);
   double lo = 0, hi = (q - y) / (3 * p.shear), dg = hi;
@@ -75,6 +77,7 @@ double johnson_cook_return(const J2Params& p, double q, double ep, double therma
     const double r = q - 3 * p.shear * dg - y;
     if (std::abs(r) <= 1e-15 * q) break;  // at the round-off of q
     (r > 0 ? lo : hi) = dg;
+    if (lo >= hi) hi = 2 * lo;  // a law softening with strain had its root past dg0: the bracket widens
     // Newton in log dgamma: the rate term C ln(dgamma / dt) is linear there (a dgamma of one step
     // is so small that it dominates the slope), and the strain term nearly so
     const double slope = (3 * p.shear + h) * dg + (dt > 0 ? hr * dg / dt : 0.0);  // -dr / d ln dgamma
@@ -96,13 +99,13 @@ Lane return_map(const J2Params& p, Lane q, J2Batch& b) {
   b.plastic = LaneMask{};
   b.dissipation = Lane{};
   if (!p.plastic) return dgamma;
-  if (p.johnson_cook) {
+  if (p.rate_dependent()) {
     for (int l = 0; l < kLanes; ++l) {
       double y, h, hr;
-      const double thermal = p.thermal_factor(b.T[l]);
+      const J2Params::AtTemperature thermal = p.at_temperature(b.T[l]);
       p.flow_at(b.ep[l], 0.0, thermal, y, h, hr);
       if (!(q[l] > y)) continue;
-      const double dg = johnson_cook_return(p, q[l], b.ep[l], thermal, b.dt);
+      const double dg = rate_dependent_return(p, q[l], b.ep[l], thermal, b.dt);
       p.flow_at(b.ep[l] + dg, b.dt > 0 ? dg / b.dt : 0.0, thermal, y, h, hr);
       dgamma[l] = dg;
       b.ep[l] += dg;
@@ -138,7 +141,37 @@ double J2Params::thermal_factor(double T) const {
   return homologous <= 0 ? 1.0 : homologous >= 1 ? 0.0 : 1 - std::pow(homologous, jc_m);
 }
 
-void J2Params::flow_at(double ep, double rate, double thermal, double& y, double& dy_dep, double& dy_drate) const {
+double J2Params::hansel_spittel_yield(double ep) const {
+  double y, h, hr;
+  flow(ep, 0.0, 1273.15, y, h, hr);
+  return y;
+}
+
+J2Params::AtTemperature J2Params::at_temperature(double T) const {
+  AtTemperature at;
+  if (johnson_cook) at.thermal = thermal_factor(T);
+  if (hansel_spittel) {
+    const double c = T - 273.15;  // the databases' Celsius
+    // T^m9 at 1 C at the least: the laws are fitted far above freezing, and ln would fail at 0 C
+    at.log_a = std::log(hs_a) + hs_m1 * c + (hs_m9 != 0 ? hs_m9 * std::log(std::max(c, 1.0)) : 0.0);
+    at.strain_t = hs_m5 * c, at.rate_exponent = hs_m3 + hs_m8 * c;
+  }
+  return at;
+}
+
+void J2Params::hansel_spittel_at(double ep, double rate, const AtTemperature& at, double& y, double& dy_dep,
+                                 double& dy_drate) const {
+  {  // in logs: ln sigma is a sum of terms; below a minimum its slope is 0
+    const bool strained = ep > hs_eps_min, fast = rate > hs_rate_min;
+    const double e = strained ? ep : hs_eps_min, r = fast ? rate : hs_rate_min;
+    y = std::exp(at.log_a + hs_m2 * std::log(e) + hs_m4 / e + at.strain_t * std::log1p(e) + hs_m7 * e +
+                 at.rate_exponent * std::log(r));
+    dy_dep = strained ? y * (hs_m2 / e - hs_m4 / (e * e) + at.strain_t / (1 + e) + hs_m7) : 0.0;
+    dy_drate = fast ? y * at.rate_exponent / r : 0.0;
+  }
+}
+
+void J2Params::johnson_cook_at(double ep, double rate, double thermal, double& y, double& dy_dep, double& dy_drate) const {
   const double hard = jc_b * std::pow(ep, jc_n), strain = yield0 + hard;
   const double strain_slope = ep > 0 ? jc_n * hard / ep : (jc_n < 1 ? INFINITY : jc_b * jc_n);
   const bool fast = rate > jc_rate0;  // below the reference rate the law is quasi-static

@@ -5,8 +5,11 @@
 // sigma_y = sigma_y0 + H ep or power law sigma_y = K (eps0 + ep)^n (seed Table 4), or the flow
 // stress of strain, strain rate and temperature of Johnson & Cook (1983),
 //   sigma_y = (A + B ep^n) (1 + C ln max(rate / rate0, 1)) (1 - T*^m),  T* = (T - T_room) / (T_melt - T_room),
-// whose return is rate-dependent: the plastic strain rate is this increment's, dgamma / dt, solved
-// with dgamma (not the last step's rate). `plastic = false` gives the Hencky hyperelastic case.
+// or the hot-forging databases' Hansel & Spittel (1979) form, with T in Celsius as they give it,
+//   sigma_y = A e^(m1 T) T^m9 ep^m2 e^(m4 / ep) (1 + ep)^(m5 T) e^(m7 ep) rate^(m3 + m8 T),
+// ep and rate held at their minima below them. Both returns are rate-dependent: the plastic strain
+// rate is this increment's, dgamma / dt, solved with dgamma (not the last step's rate).
+// `plastic = false` gives the Hencky hyperelastic case.
 // The update runs kLanes integration points at once (lanes.hpp); j2_update(F, ...) is one point.
 #pragma once
 #include <Eigen/Dense>
@@ -25,6 +28,11 @@ struct J2Params {
   // Johnson-Cook: A = yield0, B, n, C, rate0 (1/s), m, T_room and T_melt (K)
   bool johnson_cook = false;
   double jc_b = 0, jc_n = 1, jc_c = 0, jc_rate0 = 1, jc_m = 1, t_room = 293.15, t_melt = 0;
+  // Hansel-Spittel: A (Pa), m1 (1/C), m2, m3, m4, m5 (1/C), m7, m8 (1/C), m9; ep and rate minima
+  bool hansel_spittel = false;
+  double hs_a = 0, hs_m1 = 0, hs_m2 = 0, hs_m3 = 0, hs_m4 = 0, hs_m5 = 0, hs_m7 = 0, hs_m8 = 0, hs_m9 = 0;
+  double hs_eps_min = 0, hs_rate_min = 0;
+  bool rate_dependent() const { return johnson_cook || hansel_spittel; }
   static J2Params from(double E, double nu, double yield0, double H, bool plastic) {
     return {E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu)), yield0, H, plastic};
   }
@@ -40,18 +48,38 @@ struct J2Params {
     p.t_room = t_room, p.t_melt = t_melt;
     return p;
   }
-  // The flow stress at ep (Johnson-Cook: quasi-static, at the room temperature).
+  static J2Params hansel_spittel_law(double E, double nu, const double a_m[9], double eps_min, double rate_min) {
+    J2Params p = from(E, nu, 0, 0, true);
+    p.hansel_spittel = true, p.hs_a = a_m[0], p.hs_m1 = a_m[1], p.hs_m2 = a_m[2], p.hs_m3 = a_m[3], p.hs_m4 = a_m[4];
+    p.hs_m5 = a_m[5], p.hs_m7 = a_m[6], p.hs_m8 = a_m[7], p.hs_m9 = a_m[8], p.hs_eps_min = eps_min, p.hs_rate_min = rate_min;
+    p.yield0 = p.yield(0);
+    return p;
+  }
+  // The flow stress at ep (Johnson-Cook: quasi-static, at the room temperature; Hansel-Spittel: at
+  // the least rate, at 1000 C), for the bounds that only need its scale.
   double yield(double ep) const {
     if (johnson_cook) return yield0 + jc_b * std::pow(ep, jc_n);
+    if (hansel_spittel) return hansel_spittel_yield(ep);
     return power_law ? strength * std::pow(eps0 + ep, exponent) : yield0 + hardening * ep;
   }
-  // Johnson-Cook's flow stress at (ep, rate, T) and its slopes d/d ep and d/d rate; flow_at takes
-  // the thermal factor 1 - T*^m (thermal_factor: 1 below the room temperature, 0 molten), which the
-  // return computes once for its iterations.
+  double hansel_spittel_yield(double ep) const;
+  // The rate-dependent laws' flow stress at (ep, rate, T) and its slopes d/d ep and d/d rate;
+  // flow_at takes what depends on T alone (at_temperature), which a return computes once for its
+  // iterations: Johnson-Cook's thermal factor 1 - T*^m (1 below the room temperature, 0 molten),
+  // Hansel-Spittel's ln(A e^(m1 T) T^m9), m5 T and the rate exponent m3 + m8 T.
+  struct AtTemperature {
+    double thermal = 1, log_a = 0, strain_t = 0, rate_exponent = 0;
+  };
+  AtTemperature at_temperature(double T) const;
   double thermal_factor(double T) const;
-  void flow_at(double ep, double rate, double thermal, double& y, double& dy_dep, double& dy_drate) const;
+  void flow_at(double ep, double rate, const AtTemperature& at, double& y, double& dy_dep, double& dy_drate) const {
+    if (hansel_spittel) return hansel_spittel_at(ep, rate, at, y, dy_dep, dy_drate);
+    johnson_cook_at(ep, rate, at.thermal, y, dy_dep, dy_drate);
+  }
+  void johnson_cook_at(double ep, double rate, double thermal, double& y, double& dy_dep, double& dy_drate) const;
+  void hansel_spittel_at(double ep, double rate, const AtTemperature& at, double& y, double& dy_dep, double& dy_drate) const;
   void flow(double ep, double rate, double T, double& y, double& dy_dep, double& dy_drate) const {
-    flow_at(ep, rate, thermal_factor(T), y, dy_dep, dy_drate);
+    flow_at(ep, rate, at_temperature(T), y, dy_dep, dy_drate);
   }
   // sigma_y and d sigma_y / d ep together (one pow for the power law)
   void yield_and_slope(double ep, double& y, double& h) const {
@@ -75,8 +103,8 @@ struct J2Batch {
   Lane psi;           // stored elastic energy per reference volume (J/m^3)
   Lane dissipation;   // plastic work of this increment per reference volume (J/m^3)
   LaneMask plastic;   // the trial state was outside the yield surface (a return was made)
-  Lane T{};           // temperature (K), Johnson-Cook only: the start of the increment's
-  double dt = 0;      // the increment's time (s), Johnson-Cook only: rate = dgamma / dt (0: no rate effect)
+  Lane T{};           // temperature (K), rate-dependent laws only: the start of the increment's
+  double dt = 0;      // the increment's time (s), rate-dependent laws only: rate = dgamma / dt (0: no rate effect)
   void at_rest(int lane);
 };
 

@@ -168,3 +168,36 @@ TEST(Scene, ThermalKeysNeedTheirPhysics) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Scene, AMaterialLibraryGivesTheKeysTheSceneDoesNotOverride) {
+  const std::string lib = (fs::temp_directory_path() / "rk_library_steel.yaml").string();
+  std::ofstream(lib) << "material:\n  model: j2_linear\n  density: 7850\n  youngs_modulus: 210.0e9\n"
+                        "  poisson_ratio: 0.3\n  yield_stress: 300.0e6\n";
+  const std::string scene = replace(kGood, "  model: j2_linear\n  density: 8930\n  youngs_modulus: 117.0e9\n  poisson_ratio: 0.35\n"
+                                           "  yield_stress: 400.0e6\n",
+                                    "  library: " + lib + "\n  yield_stress: 350.0e6\n");
+  const rk::Scene s = rk::load_scene(write_scene(scene));
+  EXPECT_EQ(s.material.density, 7850);
+  EXPECT_EQ(s.material.yield_stress, 350e6);  // the scene's own key wins
+  EXPECT_NE(s.resolved_yaml.find("library: " + lib), std::string::npos);
+  const std::string missing = error_of(replace(scene, lib, lib + ".absent"));
+  EXPECT_NE(missing.find("key 'material.library': cannot read"), std::string::npos) << missing;
+  std::ofstream(lib) << "material:\n  model: j2_linear\n  density: -1\n";
+  const std::string bad = error_of(scene);
+  EXPECT_NE(bad.find("material.density"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("with material.library " + lib), std::string::npos) << bad;
+}
+
+TEST(Scene, TheShippedMaterialsLoad) {
+  for (const char* name : {"aisi_1045", "ofhc_copper", "aluminium_2024"}) {
+    const std::string scene = replace(kGood, "  model: j2_linear\n  density: 8930\n  youngs_modulus: 117.0e9\n  poisson_ratio: 0.35\n"
+                                             "  yield_stress: 400.0e6\n",
+                                      std::string("  library: ") + RK_SOURCE_DIR + "/geometry/materials/" + name + ".yaml\n");
+    const rk::Scene s = rk::load_scene(write_scene(scene));
+    EXPECT_TRUE(s.material.thermal() && s.material.conducting()) << name;
+  }
+}
+
+}  // namespace
