@@ -208,6 +208,14 @@ int run(int argc, char** argv) {
       frames = std::max<std::int64_t>(frames, rk::result_frame_number(entry.path().filename().string()) + 1);
   }
   fs::create_directories(case_dir + "/vtk");
+  // an earlier, longer run's files past this run's last frame would pass for its results: removed
+  for (const auto& entry : fs::directory_iterator(case_dir + "/vtk")) {
+    const std::string file = entry.path().filename().string();
+    const auto digits = file.size() >= 9 ? file.substr(file.size() - 9, 5) : std::string();
+    const bool numbered = file.ends_with(".vtu") && digits.size() == 5 && digits.find_first_not_of("0123456789") == std::string::npos &&
+                          (file.starts_with("frame_") || file.starts_with("die_"));
+    if (numbered && std::stoll(digits) >= std::max<std::int64_t>(frames, 1)) fs::remove(entry.path());
+  }
   // the dies, placed at their stroke at each frame's time (a part of their own in the .pvd)
   const rk::Scene scene = rk::load_scene(case_dir + "/scene.resolved.yaml", {}, rk::Side::solve);
   std::vector<rk::DieSurface> dies;
