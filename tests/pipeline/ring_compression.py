@@ -19,6 +19,7 @@ tools.prep(case, 1, scene=rkcase.ROOT / "geometry" / "ring_compression" / "scene
 bore = {}
 for m in (0, 0.3, 1):
     tools.solve(case, 1, sets=[f"dies[0].shear_factor={m}", "time.end=1.6e-3"])
+    (case / "vtk").mkdir(exist_ok=True)
     stale = [case / "vtk" / "frame_00099.vtu", case / "vtk" / "die_die_00099.vtu"]  # as a longer run leaves them
     for f in stale:
         f.write_text("stale")
