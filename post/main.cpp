@@ -136,9 +136,11 @@ std::pair<rk::VtuCells, std::vector<std::int64_t>> read_cells(const std::string&
 }
 
 // --fields: a comma-separated subset of kFields ("all": every one).
-std::vector<Field> select_fields(const std::string& list, bool with_temperature) {
+// thermal: how many of kThermalFields the frames hold (0 without a temperature; 1, the temperature
+// alone, in frames of rksolve before 2026-12-02)
+std::vector<Field> select_fields(const std::string& list, int thermal) {
   std::vector<Field> known(std::begin(kFields), std::end(kFields));
-  if (with_temperature) known.push_back(rk::kTemperatureField);
+  known.insert(known.end(), std::begin(rk::kThermalFields), std::begin(rk::kThermalFields) + thermal);
   if (list == "all") return known;
   std::vector<Field> out;
   std::stringstream ss(list);
@@ -222,7 +224,14 @@ int run(int argc, char** argv) {
   if (!scene.dies.empty())
     dies = rk::read_subdomain(rk::subdomain_path(case_dir, 0), 0, ranks, scene.prep_hash).dies;
   // the temperature where the material has one (and the run wrote it)
-  const std::vector<Field> fields = select_fields(field_list, solved && scene.material.thermal());
+  int thermal = 0;  // the thermal fields the frames hold, from rank 0's first frame
+  if (solved && scene.material.thermal()) {
+    thermal = int(std::size(rk::kThermalFields));
+    const std::string first = rk::result_frame_path(case_dir, 0, 0);
+    if (fs::exists(first) && !rk::H5File(first, rk::H5File::Mode::read).exists(rk::result_frame_group(0) + rk::kThermalFields[1].name))
+      thermal = 1;
+  }
+  const std::vector<Field> fields = select_fields(field_list, thermal);
   const std::vector<int> chosen = select_frames(frame_list, solved ? int(frames) : 1);
   const auto [cells, cell_rank] = read_cells(case_dir, ranks, scene.prep_hash);
   std::vector<rk::PvdEntry> index;

@@ -102,6 +102,10 @@ void write_report(const std::string& case_dir) {
     if (solve.mass_scaling > 1)
       r << "| quasi-static | mass scaling " << num(solve.mass_scaling, 3) << ", max kinetic/internal "
         << num(100 * solve.max_kinetic_internal_ratio, 3) << " % |\n";
+    if (solve.thermal_updates > 0)
+      r << "| heat transfer | " << solve.thermal_updates << " thermal updates, one per "
+        << num(double(solve.steps) / double(solve.thermal_updates), 3) << " steps (the last stable thermal step "
+        << num(solve.thermal_step_s, 3) << " s) |\n";
     r << "\n## Wall time per phase (max over ranks, in the step's order)\n\n| phase | s |\n|---|---|\n";
     for (const char* name : kPhaseNames)
       if (solve.phases.count(name)) r << "| " << name << " | " << num(solve.phases.at(name).max_s, 3) << " |\n";

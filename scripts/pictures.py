@@ -1,11 +1,13 @@
 """Pictures of a case, rendered off-screen by ParaView from what rkpost wrote (CASE/vtk/case.pvd):
-the deformed part coloured by equivalent plastic strain, with the dies, at chosen frames, and the
-integration cells coloured by the rank that computes them (the seed's Figs. 8c, 13, 18).
+the deformed part coloured by equivalent plastic strain, with the dies, at chosen frames, by its
+temperature where the material has one, and the integration cells coloured by the rank that
+computes them (the seed's Figs. 8c, 13, 18).
 
   scripts/pvbatch_offscreen.sh scripts/pictures.py CASE [--frames 0,-1] [--size 900x700]
   (or xvfb-run -a pvbatch ...; plain pvbatch where a display exists)
 
-Writes CASE/plots/part_ep_FFFFF.png and CASE/plots/part_rank_FFFFF.png."""
+Writes CASE/plots/part_ep_FFFFF.png, part_temperature_FFFFF.png (with a temperature) and
+part_rank_FFFFF.png."""
 import argparse
 import json
 import xml.etree.ElementTree as ET
@@ -27,18 +29,19 @@ def time_text(t: float, end: float) -> str:
     return f"t = {scale * t:.4g} {unit}"
 
 
-def largest(part_file, name):
-    """The largest value of a point field in a frame (its colour scale's top)."""
+def value_range(part_file, name):
+    """The smallest and largest value of a point field in a frame (None where the frame has no such field)."""
     reader = XMLUnstructuredGridReader(FileName=[str(part_file)])
     reader.UpdatePipeline()
-    top = reader.PointData[name].GetRange()[1]
+    found = name in reader.PointData.keys()
+    lo, hi = reader.PointData[name].GetRange() if found else (0.0, 0.0)
     Delete(reader)
-    return top
+    return (lo, hi) if found else None
 
 
-def render(part_file, die_files, out, colour, title, size, top=None, ranks=0):
-    """The part coloured by `colour`: a point field on [0, top] (the same scale for every frame), or the
-    cells' rank as categories (ranks > 0: one colour and legend entry per rank)."""
+def render(part_file, die_files, out, colour, title, size, top=None, ranks=0, low=0.0):
+    """The part coloured by `colour`: a point field on [low, top] (the same scale for every frame), or
+    the cells' rank as categories (ranks > 0: one colour and legend entry per rank)."""
     view = CreateView("RenderView")
     view.ViewSize = size
     view.Background = [1, 1, 1]
@@ -59,9 +62,9 @@ def render(part_file, die_files, out, colour, title, size, top=None, ranks=0):
         lut.AnnotationsInitialized = 1
         lut.Annotations = [v for r in range(ranks) for v in (str(r), f"rank {r}")]
         lut.ApplyPreset("Brewer Qualitative Set1" if ranks <= 9 else "Rainbow Uniform", True)
-    else:  # a continuous field from 0 (a frame at rest draws 0 to the run's top, not 0 to 1e-38)
+    else:  # a continuous field from low (a frame at rest draws low to the run's top, not 0 to 1e-38)
         lut.ApplyPreset("Turbo", True)
-        lut.RescaleTransferFunction(0.0, max(top or 0.0, 1e-3))
+        lut.RescaleTransferFunction(low, max(top or 0.0, low + 1e-3))
         lut.AutomaticRescaleRangeMode = "Never"
     bar = GetScalarBar(lut, view)
     bar.Title = title
@@ -94,7 +97,9 @@ def main():
     ranks = json.loads((a.case / "prep.json").read_text())["ranks"]
     chosen = sorted({int(v) % len(times) for v in a.frames.split(",")})
     first_part = {t: f for t, p, f in reversed(items) if p == 0}
-    top = max(largest(first_part[times[k]], "eq_plastic_strain") for k in chosen)
+    top = max(value_range(first_part[times[k]], "eq_plastic_strain")[1] for k in chosen)
+    temperatures = [value_range(first_part[times[k]], "temperature") for k in chosen]
+    hot = None if None in temperatures else (min(r[0] for r in temperatures), max(r[1] for r in temperatures))
     out = a.case / "plots"
     out.mkdir(exist_ok=True)
     for k in chosen:
@@ -104,8 +109,12 @@ def main():
         stem = part.stem.replace("frame_", "")
         render(part, dies, out / f"part_ep_{stem}.png", ("POINTS", "eq_plastic_strain"),
                f"eq. plastic strain, {time_text(t, times[-1])}", size, top=top)
+        if hot:  # one scale for the frames, from the coolest to the hottest point
+            render(part, dies, out / f"part_temperature_{stem}.png", ("POINTS", "temperature"),
+                   f"temperature (K), {time_text(t, times[-1])}", size, top=hot[1], low=hot[0])
         render(part, [], out / f"part_rank_{stem}.png", ("CELLS", "rank"), "rank", size, ranks=ranks)
-        print(f"pictures: {out}/part_ep_{stem}.png, part_rank_{stem}.png (t = {t:g} s)")
+        print(f"pictures: {out}/part_ep_{stem}.png, {'part_temperature_' + stem + '.png, ' if hot else ''}"
+              f"part_rank_{stem}.png (t = {t:g} s)")
 
 
 main()

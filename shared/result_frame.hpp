@@ -4,7 +4,7 @@
 // (kResultFrameFormat, checked by the reader), `rank`, `ranks`, `scene_hash` (of the subdomains it
 // was computed on: a reader merges only its own case's frames). Datasets under frames/FFFFF/:
 // time (s), step, global_id, x (3 per particle: the material's current position X + u^h(X), m),
-// then kFrameFields, and kTemperatureField where the material has a temperature.
+// then kFrameFields, and kThermalFields where the material has a temperature.
 #pragma once
 #include <cstdint>
 #include <cstdio>
@@ -26,8 +26,11 @@ inline constexpr FrameField kFrameFields[] = {{"displacement", 3, "m"},   {"velo
                                               {"eq_plastic_strain", 1, "-"}, {"von_mises", 1, "Pa"},
                                               {"pressure", 1, "Pa"},      {"stress", 6, "Pa"}};
 
-// Written only where the scene's material has a temperature (material.model johnson_cook).
-inline constexpr FrameField kTemperatureField = {"temperature", 1, "K"};
+// Written only where the scene's material has a temperature (material.specific_heat): the
+// temperature, the plastic strain rate of the last increment and the flow stress at the particle's
+// strain, rate and temperature. (Frames of rksolve before 2026-12-02 hold only the first.)
+inline constexpr FrameField kThermalFields[] = {
+    {"temperature", 1, "K"}, {"plastic_strain_rate", 1, "1/s"}, {"flow_stress", 1, "Pa"}};
 
 // CASE/results/rank_NNNN
 inline std::string result_frame_dir(const std::string& case_dir, int rank) {

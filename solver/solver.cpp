@@ -361,8 +361,10 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   st_ = State::initial(md_, scene_.initial.velocity.data(), scene_.initial.velocity_gradient.data());
   init_bulk_viscosity(md_, st_, scene_.bulk_viscosity);
   if (scene_.material.thermal()) st_.temperature.assign(md_.m, scene_.initial.temperature);
-  for (const Die& d : scene_.dies)  // the flow stress of shear friction takes the rate
-    if (d.shear_factor > 0) st_.plastic_rate.assign(md_.m, 0.0);
+  // the plastic strain rate: for the flow stress of shear friction, and shown with a temperature
+  bool rates = scene_.material.thermal();
+  for (const Die& d : scene_.dies) rates = rates || d.shear_factor > 0;
+  if (rates) st_.plastic_rate.assign(md_.m, 0.0);
   if (scene_.material.conducting())  // set by HeatTransfer::start or read from the checkpoint
     st_.particle_temperature.assign(md_.n, scene_.initial.temperature), st_.heat_pending.assign(md_.m, 0.0),
     st_.surface_heat.assign(md_.n, 0.0);

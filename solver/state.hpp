@@ -28,7 +28,7 @@ struct State {
   std::vector<double> ep;      // equivalent plastic strain
   std::vector<double> psi;     // stored elastic energy density (J/m^3, reference volume)
   std::vector<double> wp;      // accumulated plastic work density (J/m^3, reference volume)
-  std::vector<double> plastic_rate;  // the last increment's d ep / dt (1/s); only for shear friction (empty otherwise)
+  std::vector<double> plastic_rate;  // the last increment's d ep / dt (1/s); with shear friction or a temperature (else empty)
   std::vector<double> force_bound;  // per point: w |P| max|grad N|, bounds its force contributions
   std::vector<double> cell_J;  // cell-averaged det F (F-bar)
   // bulk viscosity (material/bulk_viscosity.hpp), empty when off: q, the stable step's factor, and the det F

@@ -17,9 +17,9 @@
 namespace rk {
 namespace {
 
-// weight, eq_plastic_strain, von_mises, pressure, Cauchy stress (xx, yy, zz, xy, yz, zx), and the
-// temperature where the material has one
-constexpr int kProjected = 11;
+// weight, eq_plastic_strain, von_mises, pressure, Cauchy stress (xx, yy, zz, xy, yz, zx), and where
+// the material has a temperature the temperature, the plastic strain rate and the flow stress
+constexpr int kProjected = 13;
 constexpr int kStress = 4, kTemperature = 10;  // the first stress component's column, the temperature's
 
 // Cauchy von Mises stress and pressure of a point from its Kirchhoff stress (sigma = tau / J).
@@ -29,6 +29,14 @@ void cauchy_measures(const double* tau, double J, double& von_mises, double& pre
   const double q2 = 1.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
   von_mises = std::sqrt(q2) / J;
   pressure = -p / J;
+}
+
+// The flow stress at point g's strain, last rate and temperature.
+double flow_stress(const Model& md, const State& st, std::size_t g) {
+  if (!md.material.rate_dependent()) return md.material.yield(st.ep[g]);
+  double y, h, hr;
+  md.material.flow(st.ep[g], st.plastic_rate.empty() ? 0.0 : st.plastic_rate[g], st.temperature[g], y, h, hr);
+  return y;
 }
 
 // The temperature column's value at a point: its temperature; with conduction (the particles carry
@@ -69,9 +77,10 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     cauchy_measures(&st.tau[6 * g], st.total_J(g), vm, p);
     const double* tau = &st.tau[6 * g];
     const double J = st.total_J(g);
+    const double rate = st.plastic_rate.empty() ? 0.0 : st.plastic_rate[g];
     const double values[kProjected] = {1.0,        st.ep[g],   vm,         p,          tau[0] / J, tau[1] / J,
                                        tau[2] / J, tau[3] / J, tau[4] / J, tau[5] / J,
-                                       point_heat(st, g)};
+                                       point_heat(st, g), rate, np > kTemperature ? flow_stress(md, st, g) : 0.0};
     double nmax = 0;
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) nmax = std::max(nmax, std::abs(md.N[k]));
     for (int c = 0; c < np; ++c) {
@@ -93,7 +102,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
 
   // Displacements: the material's, u^h(X_I) = sum_J N_J(X_I) d_J (RK coefficients are not values).
   std::vector<std::int64_t> gid;
-  std::vector<double> x, u, v, ep, vm, pr, sigma, temperature;
+  std::vector<double> x, u, v, ep, vm, pr, sigma, temperature, rate, flow;
   for (std::size_t I = 0; I < md.n; ++I) {
     if (!md.owned[I]) continue;
     gid.push_back(md.global_id[I]);
@@ -116,6 +125,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
         for (auto k = md.material_offsets[I]; k < md.material_offsets[I + 1]; ++k)
           T += md.material_N[std::size_t(k)] * st.particle_temperature[std::size_t(md.material_cols[std::size_t(k)])];
       temperature.push_back(T + value(kTemperature));
+      rate.push_back(value(kTemperature + 1)), flow.push_back(value(kTemperature + 2));
     }
   }
   const std::string path = result_frame_path(case_dir_, md.rank, frames_), tmp = path + ".tmp";
@@ -134,7 +144,9 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     static_assert(std::size(fields) == std::size(kFrameFields));
     for (std::size_t k = 0; k < std::size(fields); ++k)
       f.write(g + kFrameFields[k].name, *fields[k], std::size_t(kFrameFields[k].components));
-    if (np > kTemperature) f.write(g + kTemperatureField.name, temperature);
+    if (np > kTemperature)
+      for (const auto& [field, data] : {std::pair{kThermalFields[0], &temperature}, {kThermalFields[1], &rate}, {kThermalFields[2], &flow}})
+        f.write(g + field.name, *data);
     f.close();
   } catch (const Error&) {  // no partial frame is left behind
     std::error_code ignored;
