@@ -32,14 +32,19 @@ inline double tangential_velocity(const double v_rel[3], const double normal[3],
   return std::sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
 }
 
-// Coulomb friction: the force min(f_stick, mu f_n) against the sliding direction v_t / |v_t|;
-// zero when mu = 0 or nothing slides.
+// A friction force: min(f_stick, c x) against the sliding direction v_t / |v_t| (c x: mu f_n, or tau A);
+// zero when c = 0 or nothing slides.
+inline void sliding_friction(double c, double x, double stick_force, const double vt[3], double vt_norm, double f[3]) {
+  f[0] = f[1] = f[2] = 0;
+  if (!(c > 0 && vt_norm > 0)) return;
+  const double magnitude = std::min(stick_force, c * x);
+  for (int i = 0; i < 3; ++i) f[i] = -magnitude * vt[i] / vt_norm;
+}
+
+// Coulomb friction: the force min(f_stick, mu f_n) against the sliding direction.
 inline void coulomb_friction(double mu, double normal_force, double stick_force, const double vt[3], double vt_norm,
                              double f[3]) {
-  f[0] = f[1] = f[2] = 0;
-  if (!(mu > 0 && vt_norm > 0)) return;
-  const double magnitude = std::min(stick_force, mu * normal_force);
-  for (int i = 0; i < 3; ++i) f[i] = -magnitude * vt[i] / vt_norm;
+  sliding_friction(mu, normal_force, stick_force, vt, vt_norm, f);
 }
 
 // The friction stress of the forging codes' laws at an interface where the material's flow stress is
@@ -51,14 +56,10 @@ inline double hybrid_friction_stress(double mu, double pressure, double m, doubl
   return std::min(mu * std::max(pressure, 0.0), shear_factor_stress(m, flow_stress));
 }
 
-// The friction force of a stress tau over an area A: min(f_stick, tau A) against the sliding
-// direction v_t / |v_t|; zero where nothing slides.
+// The friction force of a stress tau over an area A: min(f_stick, tau A) against the sliding direction.
 inline void interface_friction(double tau, double area, double stick_force, const double vt[3], double vt_norm,
                                double f[3]) {
-  f[0] = f[1] = f[2] = 0;
-  if (!(tau > 0 && vt_norm > 0)) return;
-  const double magnitude = std::min(stick_force, tau * area);
-  for (int i = 0; i < 3; ++i) f[i] = -magnitude * vt[i] / vt_norm;
+  sliding_friction(tau, area, stick_force, vt, vt_norm, f);
 }
 
 }  // namespace rk
