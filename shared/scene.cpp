@@ -401,11 +401,13 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     Section m = top.section("material", true);
     auto& o = s.material;
     if (!library.empty()) m.text("library", std::nullopt), m.record("library", library);
-    std::string model = m.text("model", std::nullopt, {"elastic", "j2_linear", "j2_power", "johnson_cook", "hansel_spittel"});
+    std::string model =
+        m.text("model", std::nullopt, {"elastic", "j2_linear", "j2_power", "johnson_cook", "hansel_spittel", "table"});
     o.model = model == "elastic"          ? MaterialModel::elastic
               : model == "j2_power"       ? MaterialModel::j2_power
               : model == "johnson_cook"   ? MaterialModel::johnson_cook
               : model == "hansel_spittel" ? MaterialModel::hansel_spittel
+              : model == "table"          ? MaterialModel::table
                                           : MaterialModel::j2_linear;
     o.density = m.number("density", std::nullopt, {0, 1e6, true, false});
     o.youngs_modulus = m.number("youngs_modulus", std::nullopt, {0, 1e13, true, false});
@@ -440,8 +442,17 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
       o.melting_temperature = m.number("melting_temperature", 0.0, {0, 5000});
       o.room_temperature = m.number("room_temperature", 293.15, {0, 1e4, true, false});
     }
+    if (o.model == MaterialModel::table) {  // shared/flow_table.hpp: the file's checks name its rows
+      std::filesystem::path p(m.text("table", std::nullopt));
+      const std::string file = (p.is_absolute() ? p : (s.dir / p)).lexically_normal().string();
+      m.record("table", file);
+      o.table = std::make_shared<const FlowTable>(read_flow_table(file));
+      o.melting_temperature = m.number("melting_temperature", 0.0, {0, 5000});
+      o.room_temperature = m.number("room_temperature", 293.15, {0, 1e4, true, false});
+    }
     // the thermal keys of every model: the rate-dependent laws' flow stress needs the temperature
-    const bool jc = o.model == MaterialModel::johnson_cook || o.model == MaterialModel::hansel_spittel;
+    const bool jc = o.model == MaterialModel::johnson_cook || o.model == MaterialModel::hansel_spittel ||
+                    o.model == MaterialModel::table;
     o.specific_heat = m.number("specific_heat", jc ? std::nullopt : std::optional<double>(0.0), {0, 1e5, jc, false});
     if (o.thermal()) {
       o.taylor_quinney = m.number("taylor_quinney", 0.9, {0, 1});

@@ -4,9 +4,11 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "flow_table.hpp"
 #include "vec3.hpp"
 
 namespace rk {
@@ -57,7 +59,7 @@ struct EssentialFace {
   DieMotion motion;
 };
 
-enum class MaterialModel { elastic, j2_linear, j2_power, johnson_cook, hansel_spittel };
+enum class MaterialModel { elastic, j2_linear, j2_power, johnson_cook, hansel_spittel, table };
 
 struct Material {
   MaterialModel model = MaterialModel::j2_linear;
@@ -75,6 +77,8 @@ struct Material {
   // Hansel-Spittel: A (Pa) and m1 .. m9 (no m6) with T in Celsius in the law; strain and rate minima
   double hs_a = 0, hs_m[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // hs_m[i - 1] = m_i (hs_m[5] unused)
   double minimum_strain = 0.01, minimum_strain_rate = 0.01;
+  // a flow stress table (model table): read and checked with the scene
+  std::shared_ptr<const FlowTable> table;
   // temperature (any model; Johnson-Cook requires it): heating by plastic work, dT = taylor_quinney
   // dW_p / (rho c); conduction through the part when conductivity > 0 (else adiabatic); the thermal
   // strain alpha (T - T0), T0 the initial temperature

@@ -225,6 +225,10 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
                                              mat.hardening_coefficient, mat.hardening_exponent, mat.rate_coefficient,
                                              mat.reference_strain_rate, mat.thermal_exponent, mat.room_temperature,
                                              mat.melting_temperature);
+  } else if (mat.model == MaterialModel::table) {
+    md.material = J2Params::from(mat.youngs_modulus, mat.poisson_ratio, 0, 0, true);
+    md.material.table = mat.table;
+    md.material.yield0 = md.material.yield(0);
   } else if (mat.model == MaterialModel::hansel_spittel) {
     const double a_m[9] = {mat.hs_a, mat.hs_m[0], mat.hs_m[1], mat.hs_m[2], mat.hs_m[3], mat.hs_m[4], mat.hs_m[6], mat.hs_m[7], mat.hs_m[8]};
     md.material = J2Params::hansel_spittel_law(mat.youngs_modulus, mat.poisson_ratio, a_m, mat.minimum_strain,

@@ -141,14 +141,15 @@ double J2Params::thermal_factor(double T) const {
   return homologous <= 0 ? 1.0 : homologous >= 1 ? 0.0 : 1 - std::pow(homologous, jc_m);
 }
 
-double J2Params::hansel_spittel_yield(double ep) const {
+double J2Params::hot_yield(double ep) const {
   double y, h, hr;
-  flow(ep, 0.0, 1273.15, y, h, hr);
+  flow(ep, 0.0, table ? table->temperature.front() : 1273.15, y, h, hr);
   return y;
 }
 
 J2Params::AtTemperature J2Params::at_temperature(double T) const {
   AtTemperature at;
+  at.T = T;
   if (johnson_cook) at.thermal = thermal_factor(T);
   if (hansel_spittel) {
     const double c = T - 273.15;  // the databases' Celsius

@@ -15,6 +15,9 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include <memory>
+
+#include "flow_table.hpp"
 #include "material/lanes.hpp"
 
 namespace rk {
@@ -32,7 +35,9 @@ struct J2Params {
   bool hansel_spittel = false;
   double hs_a = 0, hs_m1 = 0, hs_m2 = 0, hs_m3 = 0, hs_m4 = 0, hs_m5 = 0, hs_m7 = 0, hs_m8 = 0, hs_m9 = 0;
   double hs_eps_min = 0, hs_rate_min = 0;
-  bool rate_dependent() const { return johnson_cook || hansel_spittel; }
+  // a flow stress table (shared/flow_table.hpp), trilinear in (strain, ln rate, temperature)
+  std::shared_ptr<const FlowTable> table;
+  bool rate_dependent() const { return johnson_cook || hansel_spittel || table; }
   static J2Params from(double E, double nu, double yield0, double H, bool plastic) {
     return {E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu)), yield0, H, plastic};
   }
@@ -56,24 +61,26 @@ struct J2Params {
     return p;
   }
   // The flow stress at ep (Johnson-Cook: quasi-static, at the room temperature; Hansel-Spittel: at
-  // the least rate, at 1000 C), for the bounds that only need its scale.
+  // the least rate, at 1000 C; a table: at its least rate and temperature), for the bounds that only
+  // need its scale.
   double yield(double ep) const {
     if (johnson_cook) return yield0 + jc_b * std::pow(ep, jc_n);
-    if (hansel_spittel) return hansel_spittel_yield(ep);
+    if (hansel_spittel || table) return hot_yield(ep);
     return power_law ? strength * std::pow(eps0 + ep, exponent) : yield0 + hardening * ep;
   }
-  double hansel_spittel_yield(double ep) const;
+  double hot_yield(double ep) const;
   // The rate-dependent laws' flow stress at (ep, rate, T) and its slopes d/d ep and d/d rate;
   // flow_at takes what depends on T alone (at_temperature), which a return computes once for its
   // iterations: Johnson-Cook's thermal factor 1 - T*^m (1 below the room temperature, 0 molten),
   // Hansel-Spittel's ln(A e^(m1 T) T^m9), m5 T and the rate exponent m3 + m8 T.
   struct AtTemperature {
-    double thermal = 1, log_a = 0, strain_t = 0, rate_exponent = 0;
+    double thermal = 1, log_a = 0, strain_t = 0, rate_exponent = 0, T = 0;
   };
   AtTemperature at_temperature(double T) const;
   double thermal_factor(double T) const;
   void flow_at(double ep, double rate, const AtTemperature& at, double& y, double& dy_dep, double& dy_drate) const {
     if (hansel_spittel) return hansel_spittel_at(ep, rate, at, y, dy_dep, dy_drate);
+    if (table) return table->at(ep, rate, at.T, y, dy_dep, dy_drate);
     johnson_cook_at(ep, rate, at.thermal, y, dy_dep, dy_drate);
   }
   void johnson_cook_at(double ep, double rate, double thermal, double& y, double& dy_dep, double& dy_drate) const;
