@@ -7,6 +7,9 @@ temperature T^h(X_I) (as rkpost writes it) in every frame after t = 0 against th
 - scene_convection.yaml, every face cooled by a film of conductance H to air at Ta: the product of
   the three slabs' series (sections 3.11 and 1.15), each over the roots of b tan(b) = H l / k for a
   slab of half-thickness l;
+- scene_regions.yaml, the bar at T0 with its part beyond x = a at T1 (a temperature region), every
+  face insulated (section 3.3): T = Tm + sum_n 2 (T0 - T1) / (n pi) sin(n pi a / L) cos(n pi x / L)
+  exp(-n^2 pi^2 alpha t / L^2), Tm = T0 a / L + T1 (1 - a / L);
 - scene_die.yaml, the lower face on a die at Td through an interface of conductance H, the other
   faces insulated: the slab series of half-thickness l = 4 mm (the bar and its mirror image), and
   the lumped capacity T = Td + (T0 - Td) exp(-H A t / (rho c V)) for the bar's mean temperature.
@@ -33,6 +36,15 @@ def fixed_ends(x, t, L, alpha, T0, T1, terms=400):
     for n in range(1, 2 * terms, 2):
         s += 4 / (n * math.pi) * np.sin(n * math.pi * x / L) * math.exp(-(n * math.pi / L) ** 2 * alpha * t)
     return T1 + (T0 - T1) * s
+
+
+def step(x, t, L, alpha, a, T0, T1, terms=2000):
+    mean = T0 * a / L + T1 * (1 - a / L)
+    s = np.full_like(x, mean)
+    for n in range(1, terms):
+        s += 2 * (T0 - T1) / (n * math.pi) * math.sin(n * math.pi * a / L) * np.cos(n * math.pi * x / L) * \
+            math.exp(-(n * math.pi / L) ** 2 * alpha * t)
+    return s
 
 
 def film_slab(x, centre, l, bi, Fo, terms=200):
@@ -65,8 +77,11 @@ def main():
     faces = thermal.get("fixed_faces") or []
     dies = [d for d in scene.get("dies") or [] if d.get("heat_transfer", 0) > 0]
     W = 0.004
+    regions = scene["initial_conditions"].get("temperature_regions") or []
     if faces:
         kind, T1 = "fixed ends", faces[0]["temperature"]
+    elif regions:
+        kind, T1, edge = "step", regions[0]["temperature"], regions[0]["lo"][0]
     elif dies:
         kind, T1, H = "die", dies[0]["temperature"], dies[0]["heat_transfer"]
     else:
@@ -82,6 +97,8 @@ def main():
         x, T = m.points, m.point_data["temperature"].reshape(-1)
         if kind == "fixed ends":
             exact = fixed_ends(x[:, 0], t, L, alpha, T0, T1)
+        elif kind == "step":
+            exact = step(x[:, 0], t, L, alpha, edge, T0, T1)
         elif kind == "die":
             exact = T1 + (T0 - T1) * film_slab(x[:, 2], W, W, H * W / k, alpha * t / W**2)
         else:

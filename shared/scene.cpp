@@ -483,6 +483,15 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
       const bool melts = s.material.melting_temperature > 0;
       s.initial.temperature = ic.number("temperature", s.material.room_temperature,
                                         {0, melts ? s.material.melting_temperature : 1e4, true, false});
+      ic.list("temperature_regions", [&](Section& p) {
+        Scene::Initial::Region r;
+        r.lo = p.vec3("lo", std::nullopt), r.hi = p.vec3("hi", std::nullopt);
+        for (int i = 0; i < 3; ++i)
+          if (!(r.hi[i] > r.lo[i]))
+            throw Error(name + ": key 'initial_conditions.temperature_regions': a box's hi must exceed its lo on every axis");
+        r.temperature = p.number("temperature", std::nullopt, {0, melts ? s.material.melting_temperature : 1e4, true, false});
+        s.initial.temperature_regions.push_back(r);
+      });
     }
     ic.done();
   }
@@ -662,6 +671,8 @@ std::vector<std::string> temperature_warnings(const Scene& s) {
     }
   };
   check("initial_conditions.temperature", s.initial.temperature);
+  for (std::size_t k = 0; k < s.initial.temperature_regions.size(); ++k)
+    check("initial_conditions.temperature_regions[" + std::to_string(k) + "].temperature", s.initial.temperature_regions[k].temperature);
   if (!s.material.conducting()) return out;
   check("thermal.ambient_temperature", s.thermal.ambient_temperature);
   for (const auto& f : s.thermal.fixed_faces) check("thermal.fixed_faces '" + f.name + "'.temperature", f.temperature);

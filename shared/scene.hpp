@@ -124,7 +124,20 @@ struct Scene {
   struct Initial {
     Vec3 velocity{};          // m/s, at X = 0
     std::array<double, 9> velocity_gradient{};  // 1/s, row-major d v_i / d X_j: v = velocity + G X
-    double temperature = 0;   // K, uniform (Johnson-Cook material; default its room temperature)
+    double temperature = 0;   // K, uniform (with a temperature; default the room temperature)
+    // boxes of another starting temperature (K), by the material's position at t = 0; a later box wins
+    struct Region {
+      Vec3 lo{}, hi{};
+      double temperature = 0;
+    };
+    std::vector<Region> temperature_regions;
+    double temperature_at(const double X[3]) const {
+      double T = temperature;
+      for (const Region& r : temperature_regions)
+        if (X[0] >= r.lo[0] && X[0] <= r.hi[0] && X[1] >= r.lo[1] && X[1] <= r.hi[1] && X[2] >= r.lo[2] && X[2] <= r.hi[2])
+          T = r.temperature;
+      return T;
+    }
   } initial;
 
   struct Loads {

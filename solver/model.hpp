@@ -75,7 +75,8 @@ struct Model {
   double mass_scaling = 1;  // density factor applied to reach time.mass_scaling_dt
   // heating by plastic work: dT = taylor_quinney dW_p / heat_capacity, with the material's own
   // rho0 c (J/(m^3 K), never mass-scaled); 0 without temperature. The thermal strain's alpha (1/K)
-  // from the initial temperature T0 (K).
+  // from the uniform initial temperature T0 (K): a region that starts at another temperature starts
+  // with its thermal strain, as a part heated locally from a uniform state.
   double heat_capacity = 0, taylor_quinney = 0;
   double thermal_expansion = 0, initial_temperature = 0;
   double wave_modulus = 0;  // K + 4G/3, for the dilatational wave speed

@@ -360,7 +360,10 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
                                                         std::to_string(scene_.dies.size()) + "; re-run rkprep");
   st_ = State::initial(md_, scene_.initial.velocity.data(), scene_.initial.velocity_gradient.data());
   init_bulk_viscosity(md_, st_, scene_.bulk_viscosity);
-  if (scene_.material.thermal()) st_.temperature.assign(md_.m, scene_.initial.temperature);
+  if (scene_.material.thermal()) {  // by the points' positions at t = 0
+    st_.temperature.resize(md_.m);
+    for (std::size_t g = 0; g < md_.m; ++g) st_.temperature[g] = scene_.initial.temperature_at(&md_.point_X[3 * g]);
+  }
   // the plastic strain rate: for the flow stress of shear friction, and shown with a temperature
   bool rates = scene_.material.thermal();
   for (const Die& d : scene_.dies) rates = rates || d.shear_factor > 0;

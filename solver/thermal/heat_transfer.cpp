@@ -83,7 +83,8 @@ HeatTransfer::HeatTransfer(const Model& md, const Scene& scene, const Comm& comm
 }
 
 void HeatTransfer::start(const Model& md, State& st, DieContact& dies, const Comm& comm) {
-  st.particle_temperature.assign(md.n, md.initial_temperature);
+  st.particle_temperature.resize(md.n);
+  for (std::size_t I = 0; I < md.n; ++I) st.particle_temperature[I] = scene_.initial.temperature_at(&md.X[3 * I]);
   st.surface_heat.assign(md.n, 0.0);
   for (std::size_t q = 0; q < fixed_particles_.size(); ++q) st.particle_temperature[fixed_particles_[q]] = fixed_temperature_[q];
   st.heat_pending.assign(md.m, 0.0);

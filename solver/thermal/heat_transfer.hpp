@@ -38,8 +38,8 @@ class HeatTransfer {
   // particle whose capacity is not positive.
   HeatTransfer(const Model& md, const Scene& scene, const Comm& comm);
 
-  // t = 0: T_I = T0 (a temperature face's particles its temperature), the points' T^h, the first
-  // stable step. Collective.
+  // t = 0: T_I the initial temperature at X_I (initial_conditions, its regions; a temperature face's
+  // particles its temperature), the points' T^h, the first stable step. Collective.
   void start(const Model& md, State& st, DieContact& dies, const Comm& comm);
 
   // After a reference update (the shape functions and so the capacities changed): the coefficients

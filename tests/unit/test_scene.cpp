@@ -201,3 +201,25 @@ TEST(Scene, TheShippedMaterialsLoad) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Scene, TemperatureRegionsSetTheStartByPositionTheLastBoxWinning) {
+  const std::string text = replace(hot("523.15"), "  temperature: 1423.15\n",
+                                   "  temperature: 1423.15\n  temperature_regions:\n"
+                                   "    - {lo: [0, 0, 0], hi: [1, 1, 1], temperature: 1300}\n"
+                                   "    - {lo: [0, 0, 0.5], hi: [1, 1, 1], temperature: 1200}\n");
+  const rk::Scene s = rk::load_scene(write_scene(text));
+  const double out[3] = {-1, 0, 0}, low[3] = {0.5, 0.5, 0.2}, high[3] = {0.5, 0.5, 0.7};
+  EXPECT_EQ(s.initial.temperature_at(out), 1423.15);
+  EXPECT_EQ(s.initial.temperature_at(low), 1300);
+  EXPECT_EQ(s.initial.temperature_at(high), 1200);
+  EXPECT_NE(error_of(replace(text, "hi: [1, 1, 1], temperature: 1200", "hi: [1, 1, 0.4], temperature: 1200"))
+                .find("a box's hi must exceed its lo"),
+            std::string::npos);
+  const auto w = rk::temperature_warnings(rk::load_scene(write_scene(replace(text, "temperature: 1200", "temperature: 200"))));
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("temperature_regions[1]"), std::string::npos) << w[0];
+}
+
+}  // namespace
