@@ -7,6 +7,8 @@ temperature T^h(X_I) (as rkpost writes it) in every frame after t = 0 against th
 - scene_convection.yaml, every face cooled by a film of conductance H to air at Ta: the product of
   the three slabs' series (sections 3.11 and 1.15), each over the roots of b tan(b) = H l / k for a
   slab of half-thickness l;
+- scene_conductivity.yaml, the ends held at T0 and T1, k(T) piecewise linear: at steady state the
+  Kirchhoff transform U(T) = int_T0^T k dT is linear in x (only its last frame is compared);
 - scene_regions.yaml, the bar at T0 with its part beyond x = a at T1 (a temperature region), every
   face insulated (section 3.3): T = Tm + sum_n 2 (T0 - T1) / (n pi) sin(n pi a / L) cos(n pi x / L)
   exp(-n^2 pi^2 alpha t / L^2), Tm = T0 a / L + T1 (1 - a / L);
@@ -36,6 +38,14 @@ def fixed_ends(x, t, L, alpha, T0, T1, terms=400):
     for n in range(1, 2 * terms, 2):
         s += 4 / (n * math.pi) * np.sin(n * math.pi * x / L) * math.exp(-(n * math.pi / L) ** 2 * alpha * t)
     return T1 + (T0 - T1) * s
+
+
+def steady(x, L, table, T0, T1):
+    """T(x) with U(T(x)) = U(T1) x / L, U(T) = int_T0^T k dT for k piecewise linear through `table`."""
+    Ts = np.linspace(T0, T1, 20001)
+    k = np.interp(Ts, [p[0] for p in table], [p[1] for p in table])
+    U = np.concatenate([[0.0], np.cumsum(0.5 * (k[1:] + k[:-1]) * np.diff(Ts))])
+    return np.interp(U[-1] * x / L, U, Ts)
 
 
 def step(x, t, L, alpha, a, T0, T1, terms=2000):
@@ -70,7 +80,8 @@ def main():
     require_part(a.case, ("slab.geo",), "heat slab (geometry/heat_slab)")
     scene = yaml.safe_load((a.case / "scene.resolved.yaml").read_text())
     mat = scene["material"]
-    k, rho, c = mat["conductivity"], mat["density"], mat["specific_heat"]
+    k = mat.get("conductivity") or mat["conductivity_table"][0][1]
+    rho, c = mat["density"], mat["specific_heat"]
     T0 = scene["initial_conditions"]["temperature"]
     alpha, L = k / (rho * c), 0.02
     thermal = scene.get("thermal") or {}
@@ -78,7 +89,9 @@ def main():
     dies = [d for d in scene.get("dies") or [] if d.get("heat_transfer", 0) > 0]
     W = 0.004
     regions = scene["initial_conditions"].get("temperature_regions") or []
-    if faces:
+    if len(faces) == 2 and faces[0]["temperature"] != faces[1]["temperature"]:
+        kind, T0, T1 = "steady", faces[0]["temperature"], faces[1]["temperature"]
+    elif faces:
         kind, T1 = "fixed ends", faces[0]["temperature"]
     elif regions:
         kind, T1, edge = "step", regions[0]["temperature"], regions[0]["lo"][0]
@@ -95,7 +108,11 @@ def main():
             continue
         m = meshio.read(a.case / "vtk" / name)
         x, T = m.points, m.point_data["temperature"].reshape(-1)
-        if kind == "fixed ends":
+        if kind == "steady" and name != frames[-1][1]:
+            continue
+        if kind == "steady":
+            exact = steady(x[:, 0], L, mat["conductivity_table"], T0, T1)
+        elif kind == "fixed ends":
             exact = fixed_ends(x[:, 0], t, L, alpha, T0, T1)
         elif kind == "step":
             exact = step(x[:, 0], t, L, alpha, edge, T0, T1)

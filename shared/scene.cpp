@@ -456,10 +456,37 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     o.specific_heat = m.number("specific_heat", jc ? std::nullopt : std::optional<double>(0.0), {0, 1e5, jc, false});
     if (o.thermal()) {
       o.taylor_quinney = m.number("taylor_quinney", 0.9, {0, 1});
-      o.conductivity = m.number("conductivity", 0.0, {0, 1e4});
+      if (YAML::Node table = m.get("conductivity_table", false); table && !table.IsNull()) {
+        const std::string at = where(name, table, "material.conductivity_table") + ": key 'material.conductivity_table'";
+        if (!table.IsSequence() || table.size() < 2) throw Error(at + " must be a list of at least two [T, k] pairs");
+        YAML::Node out(YAML::NodeType::Sequence);
+        for (std::size_t i = 0; i < table.size(); ++i) {
+          const YAML::Node& row = table[i];
+          double T = 0, k = 0;
+          try {
+            if (!row.IsSequence() || row.size() != 2) throw YAML::Exception(row.Mark(), "");
+            T = row[0].as<double>(), k = row[1].as<double>();
+          } catch (const YAML::Exception&) {
+            throw Error(at + ", entry " + std::to_string(i + 1) + ": expected [temperature K, conductivity W/(m K)]");
+          }
+          if (!(T > 0 && k > 0 && k <= 1e4) || (i > 0 && !(T > o.conductivity_table.back().first)))
+            throw Error(at + ", entry " + std::to_string(i + 1) +
+                        ": temperatures must ascend and be positive (kelvin), conductivities in (0, 1e4]");
+          o.conductivity_table.emplace_back(T, k);
+          YAML::Node pair(YAML::NodeType::Sequence);
+          pair.push_back(T), pair.push_back(k);
+          pair.SetStyle(YAML::EmitterStyle::Flow);
+          out.push_back(pair);
+        }
+        m.record_node("conductivity_table", out);
+        if (m.get("conductivity", false)) throw Error(at + " and 'material.conductivity' exclude each other");
+        o.conductivity = o.conductivity_table.front().second;  // conduction on
+      } else {
+        o.conductivity = m.number("conductivity", 0.0, {0, 1e4});
+      }
       o.thermal_expansion = m.number("thermal_expansion", 0.0, {0, 1e-3});
     } else {
-      for (const char* key : {"taylor_quinney", "conductivity", "thermal_expansion"})
+      for (const char* key : {"taylor_quinney", "conductivity", "conductivity_table", "thermal_expansion"})
         if (m.get(key, false))
           throw Error(name + ": key 'material." + key + "' needs 'material.specific_heat' (the temperature it acts on)");
     }

@@ -85,6 +85,17 @@ struct Material {
   double specific_heat = 0;      // J/(kg K); 0: no temperature
   double taylor_quinney = 0.9;   // the share of plastic work that becomes heat
   double conductivity = 0;       // W/(m K)
+  // k(T) instead, piecewise linear through (T K, k W/(m K)) points, held beyond the first and last
+  std::vector<std::pair<double, double>> conductivity_table;
+  double conductivity_at(double T) const {
+    if (conductivity_table.empty()) return conductivity;
+    const auto& t = conductivity_table;
+    if (T <= t.front().first) return t.front().second;
+    for (std::size_t k = 1; k < t.size(); ++k)
+      if (T <= t[k].first)
+        return t[k - 1].second + (t[k].second - t[k - 1].second) * (T - t[k - 1].first) / (t[k].first - t[k - 1].first);
+    return t.back().second;
+  }
   double thermal_expansion = 0;  // 1/K, linear
   bool thermal() const { return specific_heat > 0; }
   bool conducting() const { return conductivity > 0; }

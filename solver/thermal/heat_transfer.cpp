@@ -21,9 +21,10 @@ double point_temperature(const Model& md, const State& st, std::size_t g) {
   return T;
 }
 
-// w_g J_ref k J C^-1 at point g (Voigt xx, yy, zz, xy, yz, zx): the conductivity pulled back to the
+// w_g J_ref k(T_g) J C^-1 at point g (Voigt xx, yy, zz, xy, yz, zx): the conductivity pulled back to the
 // reference, times the point's reference volume.
-void pulled_back_conductance(const Model& md, const State& st, double k, std::size_t g, double K[6]) {
+void pulled_back_conductance(const Model& md, const State& st, const Material& mat, std::size_t g, double K[6]) {
+  const double k = mat.conductivity_at(st.temperature[g]);  // at the point's temperature
   const double* F = &st.F[9 * g];
   const double cof[9] = {F[4] * F[8] - F[5] * F[7], F[5] * F[6] - F[3] * F[8], F[3] * F[7] - F[4] * F[6],
                          F[2] * F[7] - F[1] * F[8], F[0] * F[8] - F[2] * F[6], F[1] * F[6] - F[0] * F[7],
@@ -89,7 +90,7 @@ void HeatTransfer::start(const Model& md, State& st, DieContact& dies, const Com
   for (std::size_t q = 0; q < fixed_particles_.size(); ++q) st.particle_temperature[fixed_particles_[q]] = fixed_temperature_[q];
   st.heat_pending.assign(md.m, 0.0);
   for (std::size_t g = 0; g < md.m; ++g) st.temperature[g] = point_temperature(md, st, g);
-  for (std::size_t g = 0; g < md.m; ++g) pulled_back_conductance(md, st, scene_.material.conductivity, g, &conductance_[6 * g]);
+  for (std::size_t g = 0; g < md.m; ++g) pulled_back_conductance(md, st, scene_.material, g, &conductance_[6 * g]);
   classify_faces(md, st, dies, st.t);
   assemble(md, st, dies, 0.0, false, true, comm);
   st.thermal_dt = stable_step(md, comm);
@@ -130,7 +131,7 @@ void HeatTransfer::update(const Model& md, State& st, DieContact& dies, const Co
   const double elapsed = st.t - st.thermal_t;
   const auto steps = std::max<std::int64_t>(1, std::int64_t(std::ceil(elapsed / st.thermal_dt)));
   const double dt = elapsed / double(steps);
-  for (std::size_t g = 0; g < md.m; ++g) pulled_back_conductance(md, st, scene_.material.conductivity, g, &conductance_[6 * g]);
+  for (std::size_t g = 0; g < md.m; ++g) pulled_back_conductance(md, st, scene_.material, g, &conductance_[6 * g]);
   classify_faces(md, st, dies, st.t);
   for (std::int64_t s = 0; s < steps; ++s) {
     assemble(md, st, dies, dt, s == 0, s == 0, comm);

@@ -223,3 +223,22 @@ TEST(Scene, TemperatureRegionsSetTheStartByPositionTheLastBoxWinning) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Scene, AConductivityTableIsPiecewiseLinearAndHeldAtItsEnds) {
+  const std::string text = replace(hot("523.15"), "  conductivity: 45\n", "  conductivity_table: [[300, 50], [1300, 25], [1500, 30]]\n");
+  const rk::Scene s = rk::load_scene(write_scene(text));
+  ASSERT_TRUE(s.material.conducting());
+  EXPECT_EQ(s.material.conductivity_at(200), 50);
+  EXPECT_DOUBLE_EQ(s.material.conductivity_at(800), 37.5);
+  EXPECT_DOUBLE_EQ(s.material.conductivity_at(1400), 27.5);
+  EXPECT_EQ(s.material.conductivity_at(2000), 30);
+  EXPECT_NE(error_of(replace(text, "[1300, 25], [1500, 30]", "[1500, 25], [1300, 30]")).find("entry 3: temperatures must ascend"),
+            std::string::npos);
+  EXPECT_NE(error_of(replace(text, "[300, 50]", "[300, -5]")).find("entry 1"), std::string::npos);
+  EXPECT_NE(error_of(replace(text, "  conductivity_table:", "  conductivity: 45\n  conductivity_table:")).find("exclude each other"),
+            std::string::npos);
+}
+
+}  // namespace
