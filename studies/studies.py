@@ -43,6 +43,7 @@ RESULTS = OUT / ("results-smoke" if SMOKE else "results")
 BIN = Path(os.environ.get("BIN", ROOT / "build" / "bin"))
 TAYLOR = "taylor_bar/scene.yaml"  # scenes under geometry/
 TAYLOR_ELASTIC = "taylor_bar/scene_elastic.yaml"
+TAYLOR_JC = "taylor_bar/scene_johnson_cook.yaml"
 UPSET = "upsetting/scene.yaml"
 UPSET_FRICTION = "upsetting/scene_friction.yaml"
 THIN_WALL = "thin_wall/scene.yaml"
@@ -173,6 +174,10 @@ def features():
                           label="exact symmetry planes"))
         cases.append(Case("taylor_output_often", **taylor(h, end, f"time.output_interval={end / 100}e-6"),
                           label="output every 1 %"))
+        # the cost of a temperature: Johnson-Cook heated adiabatically, then with conduction (copper's k)
+        cases.append(Case("taylor_johnson_cook", **taylor(h, end, scene=TAYLOR_JC), label="Johnson-Cook, adiabatic"))
+        cases.append(Case("taylor_johnson_cook_conduction", **taylor(h, end, "material.conductivity=390", scene=TAYLOR_JC),
+                          label="Johnson-Cook with conduction"))
         for k, scene in (("frictionless", UPSET), ("friction 0.12", UPSET_FRICTION)):
             cases.append(Case("upsetting_" + k.replace(" ", "_").replace(".", ""),
                               **upsetting(2.0, "time.end=1.5e-3", "time.output_interval=1.5e-3", scene=scene), label=k))
