@@ -126,6 +126,37 @@ class Section {
     return x;
   }
 
+  // A list of [a, b] number pairs (`what`: "[time, stroke]"), a strictly ascending (`ascending` names
+  // them: "the times"), recorded in flow style; empty when the key is absent.
+  std::vector<std::pair<double, double>> pairs(const std::string& key, const std::string& what, const std::string& ascending) {
+    std::vector<std::pair<double, double>> out;
+    YAML::Node v = get(key, false);
+    if (!v || v.IsNull()) return out;
+    const std::string at = "key '" + key_path(key) + "'";
+    if (!v.IsSequence() || v.size() == 0) throw Error(where(file_, v, key_path(key)) + ": " + at + " must be a list of " + what);
+    YAML::Node recorded(YAML::NodeType::Sequence);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const YAML::Node pt = v[i];
+      const std::string entry = where(file_, pt, key_path(key)) + ": " + at + " entry " + std::to_string(i + 1);
+      if (!pt.IsSequence() || pt.size() != 2) throw Error(entry + " must be " + what);
+      double a = 0, b = 0;
+      try {
+        a = pt[0].as<double>(), b = pt[1].as<double>();
+      } catch (const YAML::Exception&) {
+        throw Error(entry + " must hold numbers");
+      }
+      if (!std::isfinite(a) || !std::isfinite(b)) throw Error(entry + " must hold finite numbers");
+      if (!out.empty() && !(a > out.back().first)) throw Error(entry + ": " + ascending + " must ascend");
+      out.emplace_back(a, b);
+      YAML::Node o(YAML::NodeType::Sequence);
+      o.push_back(a), o.push_back(b);
+      o.SetStyle(YAML::EmitterStyle::Flow);
+      recorded.push_back(o);
+    }
+    resolved_[key] = recorded;
+    return out;
+  }
+
   bool given() const { return node_ && !node_.IsNull() && node_.size() > 0; }
   void record(const std::string& key, const std::string& value) { resolved_[key] = value; }
   void record_node(const std::string& key, const YAML::Node& value) { resolved_[key] = value; }
@@ -260,32 +291,8 @@ DieMotion read_motion(Section& owner, const std::string& name) {
   DieMotion motion;
   Section m = owner.section("motion", true);
   motion.direction = m.vec3("direction", std::nullopt, true);
-  YAML::Node curve = m.get("curve", false);
-  if (curve && !curve.IsNull()) {
-    if (!curve.IsSequence()) throw Error(where(name, curve, m.key_path("curve")) + ": must be a list of [time, stroke]");
-    YAML::Node out(YAML::NodeType::Sequence);
-    for (std::size_t i = 0; i < curve.size(); ++i) {
-      const YAML::Node pt = curve[i];
-      if (!pt.IsSequence() || pt.size() != 2)
-        throw Error(where(name, pt, m.key_path("curve")) + ": key '" + m.key_path("curve") + "' entry " +
-                    std::to_string(i) + " must be [time, stroke]");
-      double t = 0, x = 0;
-      try {
-        t = pt[0].as<double>(), x = pt[1].as<double>();
-      } catch (const YAML::Exception&) {
-        throw Error(where(name, pt, m.key_path("curve")) + ": key '" + m.key_path("curve") + "' entry " +
-                    std::to_string(i) + " must hold numbers");
-      }
-      if (!motion.curve.empty() && !(t > motion.curve.back().first))
-        throw Error(where(name, pt, m.key_path("curve")) + ": key '" + m.key_path("curve") +
-                    "' times must increase");
-      motion.curve.emplace_back(t, x);
-      YAML::Node o(YAML::NodeType::Sequence);
-      o.push_back(t), o.push_back(x);
-      o.SetStyle(YAML::EmitterStyle::Flow);
-      out.push_back(o);
-    }
-    m.record_node("curve", out);
+  motion.curve = m.pairs("curve", "[time, stroke]", "the times");
+  if (!motion.curve.empty()) {
     motion.speed = m.number("speed", 0.0, {0, 0});
   } else {
     motion.speed = m.number("speed", std::nullopt, {0, 1e4});
@@ -456,29 +463,12 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     o.specific_heat = m.number("specific_heat", jc ? std::nullopt : std::optional<double>(0.0), {0, 1e5, jc, false});
     if (o.thermal()) {
       o.taylor_quinney = m.number("taylor_quinney", 0.9, {0, 1});
-      if (YAML::Node table = m.get("conductivity_table", false); table && !table.IsNull()) {
-        const std::string at = where(name, table, "material.conductivity_table") + ": key 'material.conductivity_table'";
-        if (!table.IsSequence() || table.size() < 2) throw Error(at + " must be a list of at least two [T, k] pairs");
-        YAML::Node out(YAML::NodeType::Sequence);
-        for (std::size_t i = 0; i < table.size(); ++i) {
-          const YAML::Node& row = table[i];
-          double T = 0, k = 0;
-          try {
-            if (!row.IsSequence() || row.size() != 2) throw YAML::Exception(row.Mark(), "");
-            T = row[0].as<double>(), k = row[1].as<double>();
-          } catch (const YAML::Exception&) {
-            throw Error(at + ", entry " + std::to_string(i + 1) + ": expected [temperature K, conductivity W/(m K)]");
-          }
-          if (!(T > 0 && k > 0 && k <= 1e4) || (i > 0 && !(T > o.conductivity_table.back().first)))
-            throw Error(at + ", entry " + std::to_string(i + 1) +
-                        ": temperatures must ascend and be positive (kelvin), conductivities in (0, 1e4]");
-          o.conductivity_table.emplace_back(T, k);
-          YAML::Node pair(YAML::NodeType::Sequence);
-          pair.push_back(T), pair.push_back(k);
-          pair.SetStyle(YAML::EmitterStyle::Flow);
-          out.push_back(pair);
-        }
-        m.record_node("conductivity_table", out);
+      o.conductivity_table = m.pairs("conductivity_table", "[temperature K, conductivity W/(m K)]", "the temperatures");
+      if (!o.conductivity_table.empty()) {
+        const std::string at = name + ": key 'material.conductivity_table'";
+        for (const auto& [T, k] : o.conductivity_table)
+          if (!(T > 0 && k > 0 && k <= 1e4))
+            throw Error(at + ": temperatures must be positive (kelvin), conductivities in (0, 1e4]");
         if (m.get("conductivity", false)) throw Error(at + " and 'material.conductivity' exclude each other");
         o.conductivity = o.conductivity_table.front().second;  // conduction on
       } else {

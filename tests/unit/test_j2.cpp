@@ -7,6 +7,7 @@
 #include <random>
 
 #include "material/j2_plasticity.hpp"
+#include "return_check.hpp"
 
 namespace {
 
@@ -284,33 +285,6 @@ TEST(J2, JohnsonCookAdiabaticCompressionFollowsTheODE) {
   EXPECT_NEAR(sigma, sigma_ode, 3e-5 * sigma_ode) << "ODE " << sigma_ode << " Pa, T rise " << rise_ode << " K";
   EXPECT_NEAR(point.T - T0, rise_ode, 4e-4 * rise_ode) << "sigma " << sigma << " Pa vs " << sigma_ode;
   EXPECT_NEAR(point.ep, ep, 2e-7 * ep);
-}
-
-// The largest relative gap over 20 000 random states (plastic strain, temperature and increment
-// drawn by `draw` from three uniform numbers; stretches up to 1 %) between the returned von Mises
-// stress and the law's flow stress at the increment's strain and rate; `plastic` counts the returns.
-template <class Draw>
-double worst_return(const rk::J2Params& law, unsigned seed, Draw draw, int& plastic) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  double worst = 0;
-  plastic = 0;
-  for (int k = 0; k < 20000; ++k) {
-    double cp[6] = {1, 1, 1, 0, 0, 0};
-    double ep0, T, dt;
-    const double a = u(gen), b = u(gen), c = u(gen);  // in this order: the states do not depend on the compiler
-    draw(a, b, c, ep0, T, dt);
-    const double s = 1 + 0.01 * std::pow(u(gen), 3);
-    double ep = ep0;
-    const Eigen::Matrix3d F = Eigen::Vector3d(s, 1 / std::sqrt(s), 1 / std::sqrt(s)).asDiagonal();
-    const rk::J2Update up = rk::j2_update(F, law, cp, ep, T, dt);
-    if (!up.plastic) continue;
-    ++plastic;
-    double flow, h, hr;
-    law.flow(ep, (ep - ep0) / dt, T, flow, h, hr);
-    worst = std::max(worst, std::abs(von_mises(up.tau) - flow) / flow);
-  }
-  return worst;
 }
 
 TEST(J2, JohnsonCookReturnConvergesOverTheRangeOfStates) {
