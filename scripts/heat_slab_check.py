@@ -12,6 +12,9 @@ temperature T^h(X_I) (as rkpost writes it) in every frame after t = 0 against th
 - scene_regions.yaml, the bar at T0 with its part beyond x = a at T1 (a temperature region), every
   face insulated (section 3.3): T = Tm + sum_n 2 (T0 - T1) / (n pi) sin(n pi a / L) cos(n pi x / L)
   exp(-n^2 pi^2 alpha t / L^2), Tm = T0 a / L + T1 (1 - a / L);
+- scene_radiation.yaml, a black body in surroundings at Ta, no convection: the lumped capacity's
+  rho c V dT/dt = -eps sigma A (T^4 - Ta^4) in closed form for the bar's mean temperature (A / V of the
+  bar: 1.1 / mm), the error as a fraction of T0 - Ta;
 - scene_die.yaml, the lower face on a die at Td through an interface of conductance H, the other
   faces insulated: the slab series of half-thickness l = 4 mm (the bar and its mirror image), and
   the lumped capacity T = Td + (T0 - Td) exp(-H A t / (rho c V)) for the bar's mean temperature.
@@ -46,6 +49,19 @@ def steady(x, L, table, T0, T1):
     k = np.interp(Ts, [p[0] for p in table], [p[1] for p in table])
     U = np.concatenate([[0.0], np.cumsum(0.5 * (k[1:] + k[:-1]) * np.diff(Ts))])
     return np.interp(U[-1] * x / L, U, Ts)
+
+
+def radiated(t, rho_c_v_over_a, eps, T0, Ta):
+    """The lumped temperature at t: t = C / (4 eps sigma Ta^3) [F(T0) - F(T)], F = ln((T + Ta)/(T - Ta)) + 2 atan(T/Ta),
+    solved for T by bisection."""
+    sigma = 5.670374419e-8
+    F = lambda T: math.log((T + Ta) / (T - Ta)) + 2 * math.atan(T / Ta)
+    c = rho_c_v_over_a / (4 * eps * sigma * Ta ** 3)
+    lo, hi = Ta * (1 + 1e-12), T0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if c * (F(mid) - F(T0)) > t else (lo, mid)
+    return 0.5 * (lo + hi)
 
 
 def step(x, t, L, alpha, a, T0, T1, terms=2000):
@@ -97,6 +113,8 @@ def main():
         kind, T1, edge = "step", regions[0]["temperature"], regions[0]["lo"][0]
     elif dies:
         kind, T1, H = "die", dies[0]["temperature"], dies[0]["heat_transfer"]
+    elif thermal.get("emissivity", 0) > 0 and thermal.get("convection", 0) == 0:
+        kind, T1, eps = "radiation", thermal["ambient_temperature"], thermal["emissivity"]
     else:
         kind, T1, H = "convection", thermal["ambient_temperature"], thermal["convection"]
     pvd = (a.case / "vtk/case.pvd").read_text()
@@ -116,6 +134,8 @@ def main():
             exact = fixed_ends(x[:, 0], t, L, alpha, T0, T1)
         elif kind == "step":
             exact = step(x[:, 0], t, L, alpha, edge, T0, T1)
+        elif kind == "radiation":  # V / A of the 20 x 4 x 4 mm bar: 320 / 352 mm
+            exact = np.full_like(T, radiated(t, rho * c * 320.0 / 352.0 * 1e-3, eps, T0, T1))
         elif kind == "die":
             exact = T1 + (T0 - T1) * film_slab(x[:, 2], W, W, H * W / k, alpha * t / W**2)
         else:

@@ -10,7 +10,9 @@ the exact solutions that scripts/heat_slab_check.py computes (Carslaw & Jaeger 1
 - the bar with its far half starting at 400 K (scene_regions.yaml, a temperature region), every face
   insulated: the cosine series of the step, and a heat content that stays what it was;
 - the ends held at 300 and 400 K with k(T) rising from 200 to 600 W/m K (scene_conductivity.yaml): the
-  steady profile of the Kirchhoff transform, bent toward the cold end (362 K at the middle)."""
+  steady profile of the Kirchhoff transform, bent toward the cold end (362 K at the middle);
+- a black body at 1000 K radiating to 300 K (scene_radiation.yaml, copper: nearly uniform): the lumped
+  Stefan-Boltzmann cooling in closed form."""
 import csv
 import json
 import subprocess
@@ -77,3 +79,7 @@ rkcase.check(drift < 1e-6 and abs(float(rows[0]["temperature_mean"]) - 347.5) < 
 # Measured: 0.64 % of the 100 K difference (a constant k would give the straight line: 12 K off in the middle)
 case, bent = run("slab_conductivity", "scene_conductivity.yaml")
 rkcase.check(bent["max_error"] < 0.012, f"k(T): T^h within {bent['max_error']:.4f} of the Kirchhoff steady profile (< 0.012)")
+
+# Measured: 0.086 % of T0 - Ta at most, at 2.5 s (the bar is within a tenth of a kelvin of uniform)
+case, rad = run("slab_radiation", "scene_radiation.yaml")
+rkcase.check(rad["max_error"] < 0.0015, f"radiation: T^h within {rad['max_error']:.5f} of the lumped closed form (< 0.0015)")
