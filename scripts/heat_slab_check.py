@@ -23,8 +23,6 @@ lumped error is that of the mean temperature. Frames are read with meshio, indep
 solver. Usage:
   heat_slab_check.py CASE [--json]
 """
-import argparse
-import json
 import math
 import re
 from pathlib import Path
@@ -33,7 +31,7 @@ import meshio
 import numpy as np
 import yaml
 
-from case_check import case_folder, require_part
+from case_check import main_of
 
 
 def fixed_ends(x, t, L, alpha, T0, T1, terms=400):
@@ -88,13 +86,8 @@ def film_slab(x, centre, l, bi, Fo, terms=200):
     return s
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("case", type=case_folder(("vtk/case.pvd",)))
-    p.add_argument("--json", action="store_true")
-    a = p.parse_args()
-    require_part(a.case, ("slab.geo",), "heat slab (geometry/heat_slab)")
-    scene = yaml.safe_load((a.case / "scene.resolved.yaml").read_text())
+def check(case: Path) -> dict:
+    scene = yaml.safe_load((case / "scene.resolved.yaml").read_text())
     mat = scene["material"]
     k = mat.get("conductivity") or mat["conductivity_table"][0][1]
     rho, c = mat["density"], mat["specific_heat"]
@@ -117,14 +110,14 @@ def main():
         kind, T1, eps = "radiation", thermal["ambient_temperature"], thermal["emissivity"]
     else:
         kind, T1, H = "convection", thermal["ambient_temperature"], thermal["convection"]
-    pvd = (a.case / "vtk/case.pvd").read_text()
+    pvd = (case / "vtk/case.pvd").read_text()
     frames = re.findall(r'timestep="([^"]+)"[^>]*name="part"[^>]*file="([^"]+)"', pvd)
     out = {"kind": kind, "alpha_m2_s": alpha, "frames": []}
     for t, name in frames:
         t = float(t)
         if t <= 0:
             continue
-        m = meshio.read(a.case / "vtk" / name)
+        m = meshio.read(case / "vtk" / name)
         x, T = m.points, m.point_data["temperature"].reshape(-1)
         if kind == "steady" and name != frames[-1][1]:
             continue
@@ -150,12 +143,13 @@ def main():
     out["max_error"] = max(f["max_error"] for f in out["frames"])
     if kind == "die":
         out["max_lumped_error"] = max(f["lumped_error"] for f in out["frames"])
-    if a.json:
-        print(json.dumps(out, indent=1))
-    else:
-        print(kind + ":", " ".join(f"t={f['time_s']:g}s err={f['max_error']:.4f}" for f in out["frames"]),
-              f"max {out['max_error']:.4f}", f"lumped {out['max_lumped_error']:.4f}" if kind == "die" else "")
+    return out
+
+
+def summary(r: dict) -> str:
+    return " ".join([r["kind"] + ":"] + [f"t={f['time_s']:g}s err={f['max_error']:.4f}" for f in r["frames"]] +
+                    [f"max {r['max_error']:.4f}"] + ([f"lumped {r['max_lumped_error']:.4f}"] if "max_lumped_error" in r else []))
 
 
 if __name__ == "__main__":
-    main()
+    main_of(__doc__, check, summary, needs=("vtk/case.pvd",), parts=("slab.geo",), what="heat slab (geometry/heat_slab)")

@@ -7,23 +7,17 @@ twice the largest z. The frictionless ring deforms homogeneously: its
 bore grows to 7.5 mm sqrt(H0 / H). Usage:
   ring_check.py CASE [--json]
 """
-import argparse
-import json
 import math
+from pathlib import Path
 
 import meshio
 import numpy as np
 
-from case_check import case_folder, require_part
+from case_check import main_of
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("case", type=case_folder(("vtk/case.pvd",)))
-    p.add_argument("--json", action="store_true")
-    a = p.parse_args()
-    require_part(a.case, ("ring.geo",), "ring compression (geometry/ring_compression)")
-    frames = sorted((a.case / "vtk").glob("frame_*.vtu"))
+def check(case: Path) -> dict:
+    frames = sorted((case / "vtk").glob("frame_*.vtu"))
     m = meshio.read(frames[-1])
     x = m.points
     X = x - m.point_data["displacement"]
@@ -35,11 +29,12 @@ def main():
            "outer_diameter_mm": 2e3 * r[outer].max(),
            "frictionless_inner_diameter_mm": 15 * math.sqrt(10e-3 / height)}
     out["inner_diameter_change"] = out["inner_diameter_mm"] / 15 - 1
-    if a.json:
-        print(json.dumps(out, indent=1))
-    else:
-        print(" ".join(f"{k}={v:.4f}" for k, v in out.items()))
+    return out
+
+
+def summary(r: dict) -> str:
+    return " ".join(f"{k}={v:.4f}" for k, v in r.items())
 
 
 if __name__ == "__main__":
-    main()
+    main_of(__doc__, check, summary, needs=("vtk/case.pvd",), parts=("ring.geo",), what="ring compression (geometry/ring_compression)")

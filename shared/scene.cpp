@@ -287,7 +287,7 @@ void apply_override(YAML::Node root, const Override& o, const std::string& file)
 
 // A prescribed motion (dies, prescribed faces): `direction` and a constant `speed`, or a piecewise-linear
 // `curve` of [time, stroke] pairs.
-DieMotion read_motion(Section& owner, const std::string& name) {
+DieMotion read_motion(Section& owner) {
   DieMotion motion;
   Section m = owner.section("motion", true);
   motion.direction = m.vec3("direction", std::nullopt, true);
@@ -532,7 +532,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     b.list("fixed_faces", [&](Section& p) { s.fixed_faces.push_back(face(p, "fixed", s.fixed_faces.size())); });
     b.list("prescribed_faces", [&](Section& p) {
       EssentialFace f = face(p, "prescribed", s.prescribed_faces.size());
-      f.motion = read_motion(p, name);
+      f.motion = read_motion(p);
       s.prescribed_faces.push_back(f);
     });
     b.list("rigid_walls", [&](Section& p) {
@@ -554,7 +554,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     die.unit = unit_length(d.text("unit", "m", {"m", "mm", "cm", "in"}));
     die.friction = d.number("friction", 0.0, {0, 10});
     die.shear_factor = d.number("shear_factor", 0.0, {0, 1});
-    die.motion = read_motion(d, name);
+    die.motion = read_motion(d);
     // Full part / modeled part: each symmetry plane whose normal is normal to the motion mirrors the
     // die force; two orthogonal such planes make a quarter (x4). Other sectors must say it. (Normal:
     // a dot product of unit vectors under 1e-9, their round-off.)
@@ -591,8 +591,8 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
       o.ambient_temperature = t.number("ambient_temperature", s.material.room_temperature, {0, 1e4, true, false});
       o.convection = t.number("convection", 0.0, {0, 1e7});
       o.emissivity = t.number("emissivity", 0.0, {0, 1});
-      // 20 by default (docs/decisions.md, "The thermal update's interval"): within 0.02 K of an
-      // update every step in hot upsetting, at 3 % of the run's time
+      // 20 by default (docs/decisions.md, "The thermal update's interval"): within 0.022 K of an
+      // update every step in hot upsetting, the thermal phase 2.4 % of the step
       o.max_steps_per_update = t.integer("max_steps_per_update", 20, 0, 1000000);
       t.list("fixed_faces", [&](Section& p) {
         TemperatureFace f;

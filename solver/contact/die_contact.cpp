@@ -213,10 +213,8 @@ void DieContact::face_friction(const Model& md, const State& st, double t, doubl
     for (std::size_t k = 0; k < dies_.size(); ++k) {
       const Die& die = dies_[k];
       if (!(die.shear_factor > 0)) continue;
-      const double stroke = die.motion.stroke(t), rate = die.motion.rate(t);
-      double y[3];
-      for (int i = 0; i < 3; ++i) y[i] = centre[i] - stroke * die.motion.direction[i];
-      const DieHit hit = search_[k]->nearest(y);
+      const double rate = die.motion.rate(t);
+      const DieHit hit = die_hit(k, centre, t);
       if (!hit.found || hit.gap >= kFaceTouch * std::sqrt(area)) continue;
       // the flow stress and the pressure on the face of its cell's points (Cauchy stress tau / J)
       const auto c = std::size_t(md.surface_face_cell[f]);
@@ -224,8 +222,7 @@ void DieContact::face_friction(const Model& md, const State& st, double t, doubl
       double flow = 0, pressure = 0;
       for (auto g = g0; g < g1; ++g) {
         const double rate_g = st.plastic_rate.empty() ? 0.0 : st.plastic_rate[g];
-        double y_g = md.material.yield(st.ep[g]), slope, slope_rate;
-        if (md.material.rate_dependent()) md.material.flow(st.ep[g], rate_g, st.temperature[g], y_g, slope, slope_rate);
+        const double y_g = md.material.flow_stress(st.ep[g], rate_g, st.temperature.empty() ? 0.0 : st.temperature[g]);
         const double* tau = &st.tau[6 * g];
         const double* nn = hit.normal;
         const double tnn = tau[0] * nn[0] * nn[0] + tau[1] * nn[1] * nn[1] + tau[2] * nn[2] * nn[2] +
@@ -252,11 +249,16 @@ void DieContact::face_friction(const Model& md, const State& st, double t, doubl
   }
 }
 
+DieHit DieContact::die_hit(std::size_t k, const double x[3], double t) const {
+  const double stroke = dies_[k].motion.stroke(t);
+  double y[3];  // in the die's own frame
+  for (int i = 0; i < 3; ++i) y[i] = x[i] - stroke * dies_[k].motion.direction[i];
+  return search_[k]->nearest(y);
+}
+
 int DieContact::touching(const double x[3], double t, double tolerance) const {
   for (std::size_t k = 0; k < dies_.size(); ++k) {
-    double y[3];
-    for (int i = 0; i < 3; ++i) y[i] = x[i] - dies_[k].motion.stroke(t) * dies_[k].motion.direction[i];
-    const DieHit hit = search_[k]->nearest(y);
+    const DieHit hit = die_hit(k, x, t);
     if (hit.found && hit.gap < tolerance) return int(k);
   }
   for (const Plane& p : planes_) {

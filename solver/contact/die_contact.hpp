@@ -90,6 +90,7 @@ class DieContact {
     double normal_force[3], friction_force[3];
   };
   Row row(const Model& md, std::size_t s) const;
+  DieHit die_hit(std::size_t k, const double x[3], double t) const;  // x's closest point on die k at time t
   void material_point(const Model& md, const State& st, std::size_t s, double x[3]) const;
   void material_value(const Model& md, const std::vector<double>& a, std::size_t s, double out[3]) const;
 

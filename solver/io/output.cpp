@@ -31,14 +31,6 @@ void cauchy_measures(const double* tau, double J, double& von_mises, double& pre
   pressure = -p / J;
 }
 
-// The flow stress at point g's strain, last rate and temperature.
-double flow_stress(const Model& md, const State& st, std::size_t g) {
-  if (!md.material.rate_dependent()) return md.material.yield(st.ep[g]);
-  double y, h, hr;
-  md.material.flow(st.ep[g], st.plastic_rate.empty() ? 0.0 : st.plastic_rate[g], st.temperature[g], y, h, hr);
-  return y;
-}
-
 // The temperature column's value at a point: its temperature; with conduction (the particles carry
 // the field T^h) only its plastic heating since the last thermal update.
 double point_heat(const State& st, std::size_t g) {
@@ -80,7 +72,8 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     const double rate = st.plastic_rate.empty() ? 0.0 : st.plastic_rate[g];
     const double values[kProjected] = {1.0,        st.ep[g],   vm,         p,          tau[0] / J, tau[1] / J,
                                        tau[2] / J, tau[3] / J, tau[4] / J, tau[5] / J,
-                                       point_heat(st, g), rate, np > kTemperature ? flow_stress(md, st, g) : 0.0};
+                                       point_heat(st, g), rate,
+                                       np > kTemperature ? md.material.flow_stress(st.ep[g], rate, st.temperature[g]) : 0.0};
     double nmax = 0;
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) nmax = std::max(nmax, std::abs(md.N[k]));
     for (int c = 0; c < np; ++c) {

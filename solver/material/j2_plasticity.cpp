@@ -162,14 +162,13 @@ J2Params::AtTemperature J2Params::at_temperature(double T) const {
 
 void J2Params::hansel_spittel_at(double ep, double rate, const AtTemperature& at, double& y, double& dy_dep,
                                  double& dy_drate) const {
-  {  // in logs: ln sigma is a sum of terms; below a minimum its slope is 0
-    const bool strained = ep > hs_eps_min, fast = rate > hs_rate_min;
-    const double e = strained ? ep : hs_eps_min, r = fast ? rate : hs_rate_min;
-    y = std::exp(at.log_a + hs_m2 * std::log(e) + hs_m4 / e + at.strain_t * std::log1p(e) + hs_m7 * e +
-                 at.rate_exponent * std::log(r));
-    dy_dep = strained ? y * (hs_m2 / e - hs_m4 / (e * e) + at.strain_t / (1 + e) + hs_m7) : 0.0;
-    dy_drate = fast ? y * at.rate_exponent / r : 0.0;
-  }
+  // in logs: ln sigma is a sum of terms; below a minimum its slope is 0
+  const bool strained = ep > hs_eps_min, fast = rate > hs_rate_min;
+  const double e = strained ? ep : hs_eps_min, r = fast ? rate : hs_rate_min;
+  y = std::exp(at.log_a + hs_m2 * std::log(e) + hs_m4 / e + at.strain_t * std::log1p(e) + hs_m7 * e +
+               at.rate_exponent * std::log(r));
+  dy_dep = strained ? y * (hs_m2 / e - hs_m4 / (e * e) + at.strain_t / (1 + e) + hs_m7) : 0.0;
+  dy_drate = fast ? y * at.rate_exponent / r : 0.0;
 }
 
 void J2Params::johnson_cook_at(double ep, double rate, double thermal, double& y, double& dy_dep, double& dy_drate) const {

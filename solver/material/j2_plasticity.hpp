@@ -88,6 +88,13 @@ struct J2Params {
   void flow(double ep, double rate, double T, double& y, double& dy_dep, double& dy_drate) const {
     flow_at(ep, rate, at_temperature(T), y, dy_dep, dy_drate);
   }
+  // The flow stress of any law at (ep, rate, T): the rate-dependent laws' flow, the others' yield(ep).
+  double flow_stress(double ep, double rate, double T) const {
+    if (!rate_dependent()) return yield(ep);
+    double y, h, hr;
+    flow(ep, rate, T, y, h, hr);
+    return y;
+  }
   // sigma_y and d sigma_y / d ep together (one pow for the power law)
   void yield_and_slope(double ep, double& y, double& h) const {
     if (!power_law) {

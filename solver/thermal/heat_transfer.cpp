@@ -32,9 +32,17 @@ void pulled_back_conductance(const Model& md, const State& st, const Material& m
   const double J = F[0] * cof[0] + F[1] * cof[1] + F[2] * cof[2];
   // F^-1 = cof^T / J, so J C^-1 = J F^-1 F^-T = cof^T cof / J
   auto c = [&](int a, int b) { return (cof[a] * cof[b] + cof[3 + a] * cof[3 + b] + cof[6 + a] * cof[6 + b]) / J; };
-  const double scale = md.weight[g] * st.total_J(g) / st.J[g] * k;  // w_g J_ref: the point's reference volume
+  const double scale = md.weight[g] * (st.J_ref.empty() ? 1.0 : st.J_ref[g]) * k;  // w_g J_ref: its reference volume
   K[0] = scale * c(0, 0), K[1] = scale * c(1, 1), K[2] = scale * c(2, 2);
   K[3] = scale * c(0, 1), K[4] = scale * c(1, 2), K[5] = scale * c(2, 0);
+}
+
+// The mean of face f's nodes' temperature coefficients.
+double face_temperature(const Model& md, const State& st, std::size_t f) {
+  const auto k0 = md.surface_face_offsets[f], k1 = md.surface_face_offsets[f + 1];
+  double T = 0;
+  for (auto k = k0; k < k1; ++k) T += st.particle_temperature[std::size_t(md.surface_face_nodes[std::size_t(k)])];
+  return T / double(k1 - k0);
 }
 
 }  // namespace
@@ -44,18 +52,7 @@ HeatTransfer::HeatTransfer(const Model& md, const Scene& scene, const Comm& comm
   headroom_ = force_headroom(md, 1, 64, comm);  // a column per point and particle; faces: at most 64 per particle
   exchange_.emplace(md, 2);
   // C_I = rho0 c sum_g w_g N_I(X_g), summed over the ranks
-  const double rho_c = md.heat_capacity;
-  double most = 0;
-  for (std::size_t g = 0; g < md.m; ++g)
-    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
-      most = std::max(most, rho_c * md.weight[g] * std::abs(md.N[std::size_t(k)]));
-  comm.max(&most, 1);
-  const FixedScale scale = FixedScale::for_bound(most, headroom_);
-  std::fill(partial_.begin(), partial_.end(), Fixed(0));
-  for (std::size_t g = 0; g < md.m; ++g)
-    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
-      partial_[2 * std::size_t(md.nbr[k])] += scale.fixed(rho_c * md.weight[g] * md.N[std::size_t(k)]);
-  exchange_->sum(partial_);
+  const FixedScale scale = lump(md, nullptr, nullptr, comm);
   capacity_.resize(md.n);
   std::int64_t bad = -1;
   for (std::size_t I = 0; I < md.n; ++I) {
@@ -87,9 +84,8 @@ void HeatTransfer::start(const Model& md, State& st, DieContact& dies, const Com
   st.particle_temperature.resize(md.n);
   for (std::size_t I = 0; I < md.n; ++I) st.particle_temperature[I] = scene_.initial.temperature_at(&md.X[3 * I]);
   st.surface_heat.assign(md.n, 0.0);
-  for (std::size_t q = 0; q < fixed_particles_.size(); ++q) st.particle_temperature[fixed_particles_[q]] = fixed_temperature_[q];
   st.heat_pending.assign(md.m, 0.0);
-  for (std::size_t g = 0; g < md.m; ++g) st.temperature[g] = point_temperature(md, st, g);
+  settle(md, st);
   for (std::size_t g = 0; g < md.m; ++g) pulled_back_conductance(md, st, scene_.material, g, &conductance_[6 * g]);
   classify_faces(md, st, dies, st.t);
   assemble(md, st, dies, 0.0, false, true, comm);
@@ -98,26 +94,44 @@ void HeatTransfer::start(const Model& md, State& st, DieContact& dies, const Com
 }
 
 void HeatTransfer::reproject(const Model& md, State& st, const Comm& comm) {
+  const FixedScale scale = lump(md, &st.temperature, &st.surface_heat, comm);
+  for (std::size_t I = 0; I < md.n; ++I) st.particle_temperature[I] = scale.real(partial_[2 * I]) / capacity_[I];
+  settle(md, st);
+}
+
+// rho0 c sum_g w_g N_I(X_g) v_g (v = 1 without values) plus the owned particles' `extra` (J) into
+// partial_'s first slot, summed over the ranks; its scale.
+FixedScale HeatTransfer::lump(const Model& md, const std::vector<double>* values, const std::vector<double>* extra,
+                              const Comm& comm) {
   const double rho_c = md.heat_capacity;
+  auto v = [&](std::size_t g) { return values ? (*values)[g] : 1.0; };
   double most = 0;
   for (std::size_t g = 0; g < md.m; ++g)
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
-      most = std::max(most, rho_c * md.weight[g] * std::abs(md.N[std::size_t(k)] * st.temperature[g]));
-  for (std::size_t I = 0; I < md.n; ++I) most = std::max(most, std::abs(st.surface_heat[I]));
+      most = std::max(most, rho_c * md.weight[g] * std::abs(md.N[std::size_t(k)] * v(g)));
+  for (std::size_t I = 0; extra && I < md.n; ++I) most = std::max(most, std::abs((*extra)[I]));
   comm.max(&most, 1);
   const FixedScale scale = FixedScale::for_bound(most, headroom_);
   std::fill(partial_.begin(), partial_.end(), Fixed(0));
   for (std::size_t g = 0; g < md.m; ++g)
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
-      partial_[2 * std::size_t(md.nbr[k])] += scale.fixed(rho_c * md.weight[g] * md.N[std::size_t(k)] * st.temperature[g]);
-  for (std::size_t I = 0; I < md.n; ++I)
-    if (md.owned[I]) partial_[2 * I] += scale.fixed(st.surface_heat[I]);
+      partial_[2 * std::size_t(md.nbr[k])] += scale.fixed(rho_c * md.weight[g] * md.N[std::size_t(k)] * v(g));
+  for (std::size_t I = 0; extra && I < md.n; ++I)
+    if (md.owned[I]) partial_[2 * I] += scale.fixed((*extra)[I]);
   exchange_->sum(partial_);
-  for (std::size_t I = 0; I < md.n; ++I) st.particle_temperature[I] = scale.real(partial_[2 * I]) / capacity_[I];
-  for (std::size_t q = 0; q < fixed_particles_.size(); ++q) st.particle_temperature[fixed_particles_[q]] = fixed_temperature_[q];
+  return scale;
+}
+
+// The temperature faces' particles held, the points' T^h gathered, nothing pending.
+void HeatTransfer::settle(const Model& md, State& st) const {
+  hold_faces(st);
   std::fill(st.heat_pending.begin(), st.heat_pending.end(), 0.0);
   std::fill(st.surface_heat.begin(), st.surface_heat.end(), 0.0);
   for (std::size_t g = 0; g < md.m; ++g) st.temperature[g] = point_temperature(md, st, g);
+}
+
+void HeatTransfer::hold_faces(State& st) const {
+  for (std::size_t q = 0; q < fixed_particles_.size(); ++q) st.particle_temperature[fixed_particles_[q]] = fixed_temperature_[q];
 }
 
 bool HeatTransfer::due(const State& st, double dt) const {
@@ -136,32 +150,22 @@ void HeatTransfer::update(const Model& md, State& st, DieContact& dies, const Co
   for (std::int64_t s = 0; s < steps; ++s) {
     assemble(md, st, dies, dt, s == 0, s == 0, comm);
     for (std::size_t I = 0; I < md.n; ++I) st.particle_temperature[I] += heat_[I] / capacity_[I];
-    for (std::size_t q = 0; q < fixed_particles_.size(); ++q) st.particle_temperature[fixed_particles_[q]] = fixed_temperature_[q];
+    hold_faces(st);
     if (s + 1 < steps)  // the faces' temperatures for the next sub-step
-      for (std::size_t f = 0; f < faces_.size(); ++f) {
-        double T = 0;
-        const auto k0 = md.surface_face_offsets[f], k1 = md.surface_face_offsets[f + 1];
-        for (auto k = k0; k < k1; ++k) T += st.particle_temperature[std::size_t(md.surface_face_nodes[k])];
-        faces_[f].T = T / double(k1 - k0);
-      }
+      for (std::size_t f = 0; f < faces_.size(); ++f) faces_[f].T = face_temperature(md, st, f);
   }
   st.thermal_dt = stable_step(md, comm);
-  std::fill(st.heat_pending.begin(), st.heat_pending.end(), 0.0);
-  std::fill(st.surface_heat.begin(), st.surface_heat.end(), 0.0);
-  for (std::size_t g = 0; g < md.m; ++g) st.temperature[g] = point_temperature(md, st, g);
+  settle(md, st);
   st.thermal_t = st.t, st.thermal_step = st.step;
   ++st.thermal_updates;
 }
 
 void HeatTransfer::classify_faces(const Model& md, const State& st, const DieContact& dies, double t) {
   for (std::size_t f = 0; f < faces_.size(); ++f) {
-    const auto k0 = md.surface_face_offsets[f], n = md.surface_face_offsets[f + 1] - k0;
-    double centre[3], T = 0;
-    for (auto k = k0; k < k0 + n; ++k) T += st.particle_temperature[std::size_t(md.surface_face_nodes[std::size_t(k)])] / n;
-    const double area = surface_face(md, st, f, centre);
+    double centre[3];
     FaceState& face = faces_[f];
-    face.area = area;
-    face.T = T;
+    face.area = surface_face(md, st, f, centre);
+    face.T = face_temperature(md, st, f);
     face.die = dies.empty() ? -1 : dies.touching(centre, t, kFaceTouch * std::sqrt(face.area));
   }
 }
@@ -178,8 +182,8 @@ void HeatTransfer::assemble(const Model& md, State& st, DieContact& dies, double
       const double* d = &md.dN[3 * std::size_t(k)];
       const double T = st.particle_temperature[std::size_t(md.nbr[k])];
       for (int i = 0; i < 3; ++i) grad[i] += d[i] * T;
-      sum_dN += std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      n_max = std::max(n_max, std::abs(md.N[std::size_t(k)]));
+      if (bound) sum_dN += std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      if (pending) n_max = std::max(n_max, std::abs(md.N[std::size_t(k)]));
     }
     const double* K = &conductance_[6 * g];
     double* q = &flux_[3 * g];

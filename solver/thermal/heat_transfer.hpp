@@ -69,6 +69,9 @@ class HeatTransfer {
   // give the dies and the ambient booked.
   void assemble(const Model& md, State& st, DieContact& dies, double dt, bool pending, bool bound, const Comm& comm);
   double stable_step(const Model& md, const Comm& comm) const;  // from bound_ (after an assemble with it)
+  FixedScale lump(const Model& md, const std::vector<double>* values, const std::vector<double>* extra, const Comm& comm);
+  void settle(const Model& md, State& st) const;
+  void hold_faces(State& st) const;
 
   const Scene& scene_;
   std::vector<double> capacity_;  // C_I (J/K)

@@ -163,7 +163,8 @@ TEST(Scene, ThermalKeysNeedTheirPhysics) {
             std::string::npos);
   EXPECT_NE(error_of(kGood + std::string("thermal:\n  convection: 10\n")).find("section 'thermal' needs 'material.conductivity'"),
             std::string::npos);
-  EXPECT_NE(error_of(replace(hot("523.15"), "    heat_transfer: 1.0e4\n", "    heat_transfer: -1\n")).find("heat_transfer"),
+  EXPECT_NE(error_of(replace(hot("523.15"), "    heat_transfer: 1.0e4\n", "    heat_transfer: -1\n"))
+                .find("heat_transfer' = -1 is out of range"),
             std::string::npos);
 }
 
