@@ -460,23 +460,30 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     // the thermal keys of every model: the rate-dependent laws' flow stress needs the temperature
     const bool jc = o.model == MaterialModel::johnson_cook || o.model == MaterialModel::hansel_spittel ||
                     o.model == MaterialModel::table;
-    o.specific_heat = m.number("specific_heat", jc ? std::nullopt : std::optional<double>(0.0), {0, 1e5, jc, false});
+    // a property as a table of temperature, [[T K, value], ...], or none; `plain` the constant's key
+    auto table = [&](const std::string& key, const std::string& what, double most, const char* plain) {
+      const auto points = m.pairs(key, "[temperature K, " + what + "]", "the temperatures");
+      const std::string at = name + ": key 'material." + key + "'";
+      for (const auto& [T, v] : points)
+        if (!(T > 0 && v > 0 && v <= most))
+          throw Error(at + ": temperatures must be positive (kelvin), each " + what + " in (0, " + std::to_string(long(most)) + "]");
+      if (!points.empty() && plain && m.get(plain, false))
+        throw Error(at + " and 'material." + plain + "' exclude each other");
+      return TemperatureTable(points);
+    };
+    o.specific_heat_table = table("specific_heat_table", "specific heat J/(kg K)", 1e5, "specific_heat");
+    o.specific_heat = o.specific_heat_table.empty()
+                          ? m.number("specific_heat", jc ? std::nullopt : std::optional<double>(0.0), {0, 1e5, jc, false})
+                          : o.specific_heat_table.front();  // temperature on
     if (o.thermal()) {
       o.taylor_quinney = m.number("taylor_quinney", 0.9, {0, 1});
-      o.conductivity_table = m.pairs("conductivity_table", "[temperature K, conductivity W/(m K)]", "the temperatures");
-      if (!o.conductivity_table.empty()) {
-        const std::string at = name + ": key 'material.conductivity_table'";
-        for (const auto& [T, k] : o.conductivity_table)
-          if (!(T > 0 && k > 0 && k <= 1e4))
-            throw Error(at + ": temperatures must be positive (kelvin), conductivities in (0, 1e4]");
-        if (m.get("conductivity", false)) throw Error(at + " and 'material.conductivity' exclude each other");
-        o.conductivity = o.conductivity_table.front().second;  // conduction on
-      } else {
-        o.conductivity = m.number("conductivity", 0.0, {0, 1e4});
-      }
-      o.thermal_expansion = m.number("thermal_expansion", 0.0, {0, 1e-3});
+      o.conductivity_table = table("conductivity_table", "conductivity W/(m K)", 1e4, "conductivity");
+      o.conductivity = o.conductivity_table.empty() ? m.number("conductivity", 0.0, {0, 1e4})
+                                                    : o.conductivity_table.front();  // conduction on
+      o.density_table = table("density_table", "density kg/m^3", 1e6, "thermal_expansion");
+      if (o.density_table.empty()) o.thermal_expansion = m.number("thermal_expansion", 0.0, {0, 1e-3});
     } else {
-      for (const char* key : {"taylor_quinney", "conductivity", "conductivity_table", "thermal_expansion"})
+      for (const char* key : {"taylor_quinney", "conductivity", "conductivity_table", "thermal_expansion", "density_table"})
         if (m.get(key, false))
           throw Error(name + ": key 'material." + key + "' needs 'material.specific_heat' (the temperature it acts on)");
     }
@@ -687,13 +694,38 @@ std::vector<std::string> temperature_warnings(const Scene& s) {
       out.push_back(text);
     }
   };
-  check("initial_conditions.temperature", s.initial.temperature);
+  // the part's temperatures beyond a property table, whose end values are then held
+  const std::pair<const char*, const TemperatureTable*> tables[] = {{"specific_heat_table", &s.material.specific_heat_table},
+                                                                    {"conductivity_table", &s.material.conductivity_table},
+                                                                    {"density_table", &s.material.density_table}};
+  auto covered = [&](const std::string& key, double T) {
+    for (const auto& [table_key, t] : tables)
+      if (!t->empty() && (T < t->points().front().first || T > t->points().back().first)) {
+        char text[240];
+        std::snprintf(text, sizeof text, "%s = %g K lies outside material.%s (%g to %g K): the table's end value is held",
+                      key.c_str(), T, table_key, t->points().front().first, t->points().back().first);
+        out.push_back(text);
+      }
+  };
+  auto part = [&](const std::string& key, double T) { check(key, T), covered(key, T); };
+  part("initial_conditions.temperature", s.initial.temperature);
   for (std::size_t k = 0; k < s.initial.temperature_regions.size(); ++k)
-    check("initial_conditions.temperature_regions[" + std::to_string(k) + "].temperature", s.initial.temperature_regions[k].temperature);
+    part("initial_conditions.temperature_regions[" + std::to_string(k) + "].temperature", s.initial.temperature_regions[k].temperature);
+  if (!s.material.density_table.empty()) {
+    const double table = s.material.density_table.at(s.initial.temperature);
+    if (std::abs(table / s.material.density - 1) > 0.02) {
+      char text[240];
+      std::snprintf(text, sizeof text,
+                    "material.density = %g kg/m^3 is the part's mass density (its CAD's shape at the initial temperature); "
+                    "material.density_table gives %g there",
+                    s.material.density, table);
+      out.push_back(text);
+    }
+  }
   if (!s.material.conducting()) return out;
-  check("thermal.ambient_temperature", s.thermal.ambient_temperature);
-  for (const auto& f : s.thermal.fixed_faces) check("thermal.fixed_faces '" + f.name + "'.temperature", f.temperature);
-  for (const auto& d : s.dies) check("dies '" + d.name + "'.temperature", d.temperature);
+  part("thermal.ambient_temperature", s.thermal.ambient_temperature);
+  for (const auto& f : s.thermal.fixed_faces) part("thermal.fixed_faces '" + f.name + "'.temperature", f.temperature);
+  for (const auto& d : s.dies) part("dies '" + d.name + "'.temperature", d.temperature);
   return out;
 }
 

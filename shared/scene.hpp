@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+
 #include "flow_table.hpp"
+#include "temperature_table.hpp"
 #include "vec3.hpp"
 
 namespace rk {
@@ -85,18 +87,12 @@ struct Material {
   double specific_heat = 0;      // J/(kg K); 0: no temperature
   double taylor_quinney = 0.9;   // the share of plastic work that becomes heat
   double conductivity = 0;       // W/(m K)
-  // k(T) instead, piecewise linear through (T K, k W/(m K)) points, held beyond the first and last
-  std::vector<std::pair<double, double>> conductivity_table;
-  double conductivity_at(double T) const {
-    if (conductivity_table.empty()) return conductivity;
-    const auto& t = conductivity_table;
-    if (T <= t.front().first) return t.front().second;
-    for (std::size_t k = 1; k < t.size(); ++k)
-      if (T <= t[k].first)
-        return t[k - 1].second + (t[k].second - t[k - 1].second) * (T - t[k - 1].first) / (t[k].first - t[k - 1].first);
-    return t.back().second;
-  }
+  TemperatureTable conductivity_table;    // k(T) instead (W/(m K))
+  TemperatureTable specific_heat_table;   // c(T) instead (J/(kg K)): the enthalpy its integral
+  double conductivity_at(double T) const { return conductivity_table.empty() ? conductivity : conductivity_table.at(T); }
   double thermal_expansion = 0;  // 1/K, linear
+  // rho(T) instead: the stress-free stretch is (rho(T0) / rho(T))^(1/3), and `density` is rho(T0)
+  TemperatureTable density_table;
   bool thermal() const { return specific_heat > 0; }
   bool conducting() const { return conductivity > 0; }
 };
@@ -235,7 +231,8 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<Override>&
 
 // Suspicious but legal temperatures (kelvin expected): one below 273.15 K, freezing (a die at 250 C
 // written as 250 is -23 C; no forging runs below freezing), a die or the air at or above the material's melting temperature
-// (Johnson-Cook). Each names its key.
+// (Johnson-Cook), a part temperature beyond a property table (its end value held), a mass density
+// 2 % off the density table at the initial temperature. Each names its key.
 std::vector<std::string> temperature_warnings(const Scene& scene);
 
 // Basis requirements: the smallest dilation with which the moment matrix stays regular.

@@ -7,8 +7,9 @@ namespace rk {
 
 Energies compute_energies(const Model& md, const State& st, const std::vector<double>& v_old, const Comm& comm) {
   // this rank's shares, summed in one reduction: kinetic (its owned particles), internal (its points'
-  // stored and plastic work, with the bulk viscosity's dissipated work), plastic work, external work
-  double e[4] = {0, st.viscous_work, 0, st.external_work};
+  // stored and plastic work, with the bulk viscosity's dissipated work and the stress's work on the
+  // thermal strain), plastic work, external work
+  double e[5] = {0, st.viscous_work + st.thermal_work, 0, st.external_work, st.thermal_work};
   for (std::size_t I = 0; I < md.n; ++I) {
     if (!md.owned[I]) continue;
     double v2 = 0;
@@ -22,14 +23,14 @@ Energies compute_energies(const Model& md, const State& st, const std::vector<do
     e[1] += md.weight[g] * (st.psi[g] + st.wp[g]);
     e[2] += md.weight[g] * st.wp[g];
   }
-  comm.sum(e, 4);
+  comm.sum(e, 5);
   Energies out;
-  out.kinetic = e[0], out.internal = e[1], out.plastic = e[2], out.external = e[3];
+  out.kinetic = e[0], out.internal = e[1], out.plastic = e[2], out.external = e[3], out.thermal = e[4];
   return out;
 }
 
 double energy_error(const Energies& e, double kinetic0) {
-  const double scale = std::max({kinetic0, std::abs(e.external), std::abs(e.contact)});
+  const double scale = std::max({kinetic0, std::abs(e.external), std::abs(e.contact), std::abs(e.thermal)});
   if (!(scale > 0)) return 0.0;
   return std::abs(e.kinetic + e.internal - kinetic0 - e.external - e.contact) / scale;
 }

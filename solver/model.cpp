@@ -242,7 +242,10 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   if (mat.thermal()) {
     md.heat_capacity = mat.density * mat.specific_heat;
     md.taylor_quinney = mat.taylor_quinney;
+    md.specific_heat_table = mat.specific_heat_table;
+    md.mass_density = mat.density;
     md.thermal_expansion = mat.thermal_expansion;
+    md.density_table = mat.density_table;
     md.initial_temperature = scene.initial.temperature;
   }
   md.wave_modulus = md.material.bulk + 4.0 / 3.0 * md.material.shear;

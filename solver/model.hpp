@@ -3,6 +3,7 @@
 // stored in CSR aligned with the neighbour columns, the cells (for F-bar and the time step), the
 // constraints.
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -74,11 +75,28 @@ struct Model {
   double density = 0;       // kg/m^3, times the mass-scaling factor
   double mass_scaling = 1;  // density factor applied to reach time.mass_scaling_dt
   // heating by plastic work: dT = taylor_quinney dW_p / heat_capacity, with the material's own
-  // rho0 c (J/(m^3 K), never mass-scaled); 0 without temperature. The thermal strain's alpha (1/K)
-  // from the uniform initial temperature T0 (K): a region that starts at another temperature starts
-  // with its thermal strain, as a part heated locally from a uniform state.
+  // rho0 c (J/(m^3 K), never mass-scaled); 0 without temperature. With a specific heat table c(T),
+  // heat_capacity is rho0 c at the table's first point and capacity_at / enthalpy / temperature_of
+  // follow the table (the enthalpy per reference volume rho0 h(T), h = int_0^T c).
   double heat_capacity = 0, taylor_quinney = 0;
+  TemperatureTable specific_heat_table;
+  double mass_density = 0;  // rho0, not mass-scaled
+  bool tabled_heat() const { return !specific_heat_table.empty(); }
+  double capacity_at(double T) const { return tabled_heat() ? mass_density * specific_heat_table.at(T) : heat_capacity; }
+  double enthalpy(double T) const { return tabled_heat() ? mass_density * specific_heat_table.integral(T) : heat_capacity * T; }
+  double temperature_of(double e) const {
+    return tabled_heat() ? specific_heat_table.inverse_integral(e / mass_density) : e / heat_capacity;
+  }
+  // The thermal strain from the uniform initial temperature T0 (K): the stress-free stretch
+  // 1 + alpha (T - T0), or (rho(T0) / rho(T))^(1/3) from a density table. A region that starts at
+  // another temperature starts with its thermal strain, as a part heated locally from a uniform state.
   double thermal_expansion = 0, initial_temperature = 0;
+  TemperatureTable density_table;
+  bool thermal_strain() const { return thermal_expansion > 0 || !density_table.empty(); }
+  double thermal_stretch(double T) const {
+    return density_table.empty() ? 1 + thermal_expansion * (T - initial_temperature)
+                                 : std::cbrt(density_table.at(initial_temperature) / density_table.at(T));
+  }
   double wave_modulus = 0;  // K + 4G/3, for the dilatational wave speed
   bool fbar = true;
 };

@@ -60,6 +60,12 @@ struct State {
   double external_work = 0;
   double update_work = 0;  // kinetic energy changed by reference updates (<= 0: smoothed away)
   double viscous_work = 0;  // work of the bulk viscosity on this rank's points (dissipated, >= 0)
+  // with a thermal strain (Model::thermal_strain; empty otherwise): each point's stress-free stretch at
+  // its last stress update (0: none yet), and the work the stress did on the thermal strain, sum_g w_g
+  // int tr(tau) d ln(stretch), on this rank's points: part of the internal energy (the stress's work on
+  // the whole strain), which the stored energy psi of the mechanical strain alone leaves out
+  std::vector<double> stretch_last;
+  double thermal_work = 0;
   std::int64_t contacts = 0;
 
   // v_I = velocity + gradient X_I (gradient row-major: d v_i / d X_j)

@@ -342,7 +342,7 @@ void DieContact::account(const Model& md, State& st, const std::vector<double>& 
       st.surface_heat[std::size_t(particles_[std::size_t(a.slave)])] += friction - to_die;
     } else {
       const std::size_t g = std::size_t(a.slave) - particles_.size();
-      const double rise = (friction - to_die) / (md.heat_capacity * md.weight[g]);
+      const double rise = (friction - to_die) / (md.capacity_at(st.temperature[g]) * md.weight[g]);
       st.temperature[g] += rise, st.heat_pending[g] += rise;
     }
   }
@@ -365,9 +365,11 @@ void DieContact::account(const Model& md, State& st, const std::vector<double>& 
     const auto c = std::size_t(md.surface_face_cell[std::size_t(ff.face)]);
     double volume = 0;
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) volume += md.weight[std::size_t(g)];
-    const double rise = (friction - to_die) / (md.heat_capacity * volume);
-    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g)
+    const double per_volume = (friction - to_die) / volume;
+    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
+      const double rise = per_volume / md.capacity_at(st.temperature[std::size_t(g)]);
       st.temperature[std::size_t(g)] += rise, st.heat_pending[std::size_t(g)] += rise;
+    }
   }
 }
 

@@ -18,7 +18,7 @@ std::string checkpoint_path(const std::string& case_dir, int rank) {
 
 namespace {
 
-constexpr std::size_t kClockScalars = 13;  // the run clock's doubles (write_temporary lists them)
+constexpr std::size_t kClockScalars = 14;  // the run clock's doubles (write_temporary lists them)
 
 void write_temporary(const std::string& tmp, const Model& md, const State& st, const RunClock& c,
                      const std::vector<DieTotals>& dies) {
@@ -30,7 +30,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     f.set_attr("format", kCheckpointFormat);
     f.write("clock/scalars", std::vector<double>{st.t, st.dt_half, c.max_error, st.external_work, c.next_output,
                                                  c.next_history, c.dt_stable, c.kinetic0, c.last_error, c.max_ke_ratio,
-                                                 st.update_work, st.viscous_work, c.max_pressure_ratio});
+                                                 st.update_work, st.viscous_work, c.max_pressure_ratio, st.thermal_work});
     f.write("clock/integers", std::vector<std::int64_t>{st.step, c.frames, std::int64_t(dies.size())});
     std::vector<double> die_work;
     for (const auto& d : dies) die_work.insert(die_work.end(), {d.press_work, d.friction_work, d.contact_work});
@@ -47,6 +47,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
       f.write("points/J_last", st.J_last);
     }
     if (!st.temperature.empty()) f.write("points/temperature", st.temperature);
+    if (!st.stretch_last.empty()) f.write("points/stretch_last", st.stretch_last);
     if (!st.plastic_rate.empty()) f.write("points/plastic_rate", st.plastic_rate);
     if (!st.particle_temperature.empty()) {  // conduction (thermal/heat_transfer.hpp)
       f.write("particles/temperature", st.particle_temperature);
@@ -76,6 +77,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
                check.read<double>("points/ep") == st.ep && check.read<double>("points/wp") == st.wp &&
                (st.q.empty() || (check.read<double>("points/q") == st.q && check.read<double>("points/J_last") == st.J_last)) &&
                (st.temperature.empty() || check.read<double>("points/temperature") == st.temperature) &&
+               (st.stretch_last.empty() || check.read<double>("points/stretch_last") == st.stretch_last) &&
                (st.plastic_rate.empty() || check.read<double>("points/plastic_rate") == st.plastic_rate) &&
                (st.particle_temperature.empty() || (check.read<double>("particles/temperature") == st.particle_temperature &&
                                                     check.read<double>("points/heat_pending") == st.heat_pending &&
@@ -161,7 +163,7 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
   st.t = s[0], st.dt_half = s[1], c.max_error = s[2], st.external_work = s[3];
   c.next_output = s[4], c.next_history = s[5], c.dt_stable = s[6], c.kinetic0 = s[7], c.last_error = s[8],
   c.max_ke_ratio = s[9], st.update_work = s[10], st.viscous_work = s[11];
-  c.max_pressure_ratio = s[12];
+  c.max_pressure_ratio = s[12], st.thermal_work = s[13];
   st.step = i[0], c.frames = i[1];
   const auto work = f.read<double>("dies/work", 3);
   for (std::size_t k = 0; k < dies.size(); ++k)
@@ -183,6 +185,12 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
       throw Error(path + ": the checkpoint holds no temperatures (written with another material); restart with the same scene");
     st.temperature = f.read<double>("points/temperature");
     if (st.temperature.size() != md.m) throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
+  }
+  if (!st.stretch_last.empty()) {  // a thermal strain
+    if (!f.exists("points/stretch_last"))
+      throw Error(path + ": the checkpoint holds no thermal stretches (written without a thermal strain); restart with the same scene");
+    st.stretch_last = f.read<double>("points/stretch_last");
+    if (st.stretch_last.size() != md.m) throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
   }
   if (!st.plastic_rate.empty()) {  // shear friction's flow stress takes the rate
     if (!f.exists("points/plastic_rate"))

@@ -113,10 +113,14 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     pr.push_back(value(3));
     for (int c = kStress; c < kStress + 6; ++c) sigma.push_back(value(c));
     if (np > kTemperature) {  // with conduction T^h(X_I) and the pending heat, else the points' temperature
-      double T = 0;
-      if (!st.particle_temperature.empty())
-        for (auto k = md.material_offsets[I]; k < md.material_offsets[I + 1]; ++k)
-          T += md.material_N[std::size_t(k)] * st.particle_temperature[std::size_t(md.material_cols[std::size_t(k)])];
+      double T = 0;  // with a specific heat table the shapes carry the enthalpy (thermal/heat_transfer.hpp)
+      if (!st.particle_temperature.empty()) {
+        for (auto k = md.material_offsets[I]; k < md.material_offsets[I + 1]; ++k) {
+          const double T_J = st.particle_temperature[std::size_t(md.material_cols[std::size_t(k)])];
+          T += md.material_N[std::size_t(k)] * (md.tabled_heat() ? md.enthalpy(T_J) : T_J);
+        }
+        if (md.tabled_heat()) T = md.temperature_of(T);
+      }
       temperature.push_back(T + value(kTemperature));
       rate.push_back(value(kTemperature + 1)), flow.push_back(value(kTemperature + 2));
     }

@@ -13,10 +13,10 @@ void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n,
   Lane r = splat(1);  // Jbar / J
   for (int l = 0; l < n && md.fbar; ++l) r[l] = st.cell_J[c] / st.J[g + l];
   Lane ratio = cube_root_near_one(r);
-  // the thermal stretch 1 + alpha (T - T0) taken out: F_mech = F / (1 + alpha (T - T0)). C_p^-1 is
+  // the thermal stretch taken out: F_mech = F / stretch(T) (1 + alpha (T - T0), or from rho(T)). C_p^-1 is
   // pushed forward at a reference update with the whole F, so the total stretch is right here.
-  if (md.thermal_expansion > 0)
-    for (int l = 0; l < n; ++l) ratio[l] /= 1 + md.thermal_expansion * (st.temperature[g + l] - md.initial_temperature);
+  if (md.thermal_strain())
+    for (int l = 0; l < n; ++l) ratio[l] /= md.thermal_stretch(st.temperature[g + l]);
   for (int l = 0; l < kLanes; ++l) {
     if (l >= n) {
       b.at_rest(l);
@@ -75,6 +75,7 @@ void check_pressure(const Model& md, const PressureBound& b, double floor, doubl
 
 StressHealth update_stress(const Model& md, State& st, const PressureBound& bound) {
   StressHealth health;
+  double thermal_work = 0;
   const double floor = bound.impact + (md.material.plastic ? md.material.yield(0.0) : 0.0);
   J2Batch b;
   // F-bar couples the points of a cell; without it (volumetric: none, nodal integration) the points
@@ -98,14 +99,21 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
       for (int l = 0; l < n; ++l) {
         const std::size_t p = g + l;
         double* t = &st.tau[6 * p];
+        const double trace_before = t[0] + t[1] + t[2];
         for (int i = 0; i < 6; ++i) t[i] = b.tau.v[i][l], st.cp_inv[6 * p + i] = b.cp_inv.v[i][l];
         if (!st.plastic_rate.empty()) st.plastic_rate[p] = b.dt > 0 ? (b.ep[l] - st.ep[p]) / b.dt : 0.0;
         st.ep[p] = b.ep[l];
         st.psi[p] = b.psi[l];
         st.wp[p] += b.dissipation[l];
+        if (!st.stretch_last.empty()) {  // the stress's work on the thermal strain over the step (trapezoid)
+          const double s = md.thermal_stretch(st.temperature[p]);
+          if (st.stretch_last[p] > 0)
+            thermal_work += md.weight[p] * 0.5 * (trace_before + t[0] + t[1] + t[2]) * std::log(s / st.stretch_last[p]);
+          st.stretch_last[p] = s;
+        }
         // the plastic work's heat, at once at the point (spread by conduction at the next thermal update)
         if (!st.temperature.empty()) {
-          const double heating = md.taylor_quinney * b.dissipation[l] / md.heat_capacity;
+          const double heating = md.taylor_quinney * b.dissipation[l] / md.capacity_at(st.temperature[p]);
           st.temperature[p] += heating;
           if (!st.heat_pending.empty()) st.heat_pending[p] += heating;
         }
@@ -129,6 +137,7 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
     const double pc = md.fbar ? wp / wJ : 0.0;
     for (auto g = g0; g < g1; g += kLanes) first_piola(md, st, g, int(std::min<std::size_t>(kLanes, g1 - g)), pc);
   }
+  st.thermal_work += thermal_work;
   return health;
 }
 

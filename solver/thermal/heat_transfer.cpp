@@ -14,11 +14,12 @@ namespace {
 // The explicit Euler step's margin under its limit 2 / lambda_max (lambda_max bounded by Gershgorin).
 constexpr double kSafety = 0.9;
 
-double point_temperature(const Model& md, const State& st, std::size_t g) {
-  double T = 0;
-  for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
-    T += md.N[std::size_t(k)] * st.particle_temperature[std::size_t(md.nbr[k])];
-  return T;
+// T^h at point g from the particles' field values (their temperatures, or with a specific heat table
+// their enthalpies, whose field's temperature it is).
+double point_temperature(const Model& md, const std::vector<double>& field, std::size_t g) {
+  double v = 0;
+  for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) v += md.N[std::size_t(k)] * field[std::size_t(md.nbr[k])];
+  return md.tabled_heat() ? md.temperature_of(v) : v;
 }
 
 // w_g J_ref k(T_g) J C^-1 at point g (Voigt xx, yy, zz, xy, yz, zx): the conductivity pulled back to the
@@ -48,10 +49,11 @@ double face_temperature(const Model& md, const State& st, std::size_t f) {
 }  // namespace
 
 HeatTransfer::HeatTransfer(const Model& md, const Scene& scene, const Comm& comm)
-    : scene_(scene), conductance_(6 * md.m), flux_(3 * md.m), spread_(md.m), partial_(2 * md.n), heat_(md.n), bound_(md.n) {
+    : scene_(scene), conductance_(6 * md.m), flux_(3 * md.m), spread_(md.m), partial_(2 * md.n), heat_(md.n), bound_(md.n),
+      enthalpy_(md.tabled_heat() ? md.n : 0), point_enthalpy_(md.tabled_heat() ? md.m : 0) {
   headroom_ = force_headroom(md, 1, 64, comm);  // a column per point and particle; faces: at most 64 per particle
   exchange_.emplace(md, 2);
-  // C_I = rho0 c sum_g w_g N_I(X_g), summed over the ranks
+  // C_I = rho0 c sum_g w_g N_I(X_g) (with a specific heat table V_I = sum_g w_g N_I(X_g)), summed over the ranks
   const FixedScale scale = lump(md, nullptr, nullptr, comm);
   capacity_.resize(md.n);
   std::int64_t bad = -1;
@@ -94,16 +96,23 @@ void HeatTransfer::start(const Model& md, State& st, DieContact& dies, const Com
 }
 
 void HeatTransfer::reproject(const Model& md, State& st, const Comm& comm) {
-  const FixedScale scale = lump(md, &st.temperature, &st.surface_heat, comm);
-  for (std::size_t I = 0; I < md.n; ++I) st.particle_temperature[I] = scale.real(partial_[2 * I]) / capacity_[I];
+  if (md.tabled_heat()) {  // the enthalpy lumped: V_I e_I = sum_g w_g N_I(X_g) e(T_g)
+    for (std::size_t g = 0; g < md.m; ++g) point_enthalpy_[g] = md.enthalpy(st.temperature[g]);
+    const FixedScale scale = lump(md, &point_enthalpy_, &st.surface_heat, comm);
+    for (std::size_t I = 0; I < md.n; ++I) st.particle_temperature[I] = md.temperature_of(scale.real(partial_[2 * I]) / capacity_[I]);
+  } else {
+    const FixedScale scale = lump(md, &st.temperature, &st.surface_heat, comm);
+    for (std::size_t I = 0; I < md.n; ++I) st.particle_temperature[I] = scale.real(partial_[2 * I]) / capacity_[I];
+  }
   settle(md, st);
 }
 
-// rho0 c sum_g w_g N_I(X_g) v_g (v = 1 without values) plus the owned particles' `extra` (J) into
-// partial_'s first slot, summed over the ranks; its scale.
+// rho0 c sum_g w_g N_I(X_g) v_g (v = 1 without values; with a specific heat table without the rho0 c,
+// v an enthalpy) plus the owned particles' `extra` (J) into partial_'s first slot, summed over the
+// ranks; its scale.
 FixedScale HeatTransfer::lump(const Model& md, const std::vector<double>* values, const std::vector<double>* extra,
                               const Comm& comm) {
-  const double rho_c = md.heat_capacity;
+  const double rho_c = md.tabled_heat() ? 1.0 : md.heat_capacity;
   auto v = [&](std::size_t g) { return values ? (*values)[g] : 1.0; };
   double most = 0;
   for (std::size_t g = 0; g < md.m; ++g)
@@ -123,11 +132,18 @@ FixedScale HeatTransfer::lump(const Model& md, const std::vector<double>* values
 }
 
 // The temperature faces' particles held, the points' T^h gathered, nothing pending.
-void HeatTransfer::settle(const Model& md, State& st) const {
+void HeatTransfer::settle(const Model& md, State& st) {
   hold_faces(st);
   std::fill(st.heat_pending.begin(), st.heat_pending.end(), 0.0);
   std::fill(st.surface_heat.begin(), st.surface_heat.end(), 0.0);
-  for (std::size_t g = 0; g < md.m; ++g) st.temperature[g] = point_temperature(md, st, g);
+  const std::vector<double>& field = field_values(md, st);
+  for (std::size_t g = 0; g < md.m; ++g) st.temperature[g] = point_temperature(md, field, g);
+}
+
+const std::vector<double>& HeatTransfer::field_values(const Model& md, const State& st) {
+  if (!md.tabled_heat()) return st.particle_temperature;
+  for (std::size_t I = 0; I < md.n; ++I) enthalpy_[I] = md.enthalpy(st.particle_temperature[I]);
+  return enthalpy_;
 }
 
 void HeatTransfer::hold_faces(State& st) const {
@@ -149,7 +165,10 @@ void HeatTransfer::update(const Model& md, State& st, DieContact& dies, const Co
   classify_faces(md, st, dies, st.t);
   for (std::int64_t s = 0; s < steps; ++s) {
     assemble(md, st, dies, dt, s == 0, s == 0, comm);
-    for (std::size_t I = 0; I < md.n; ++I) st.particle_temperature[I] += heat_[I] / capacity_[I];
+    if (md.tabled_heat())  // e_I += heat / V_I (enthalpy_ holds e(T_I) from the assembly)
+      for (std::size_t I = 0; I < md.n; ++I) st.particle_temperature[I] = md.temperature_of(enthalpy_[I] + heat_[I] / capacity_[I]);
+    else
+      for (std::size_t I = 0; I < md.n; ++I) st.particle_temperature[I] += heat_[I] / capacity_[I];
     hold_faces(st);
     if (s + 1 < steps)  // the faces' temperatures for the next sub-step
       for (std::size_t f = 0; f < faces_.size(); ++f) faces_[f].T = face_temperature(md, st, f);
@@ -172,18 +191,33 @@ void HeatTransfer::classify_faces(const Model& md, const State& st, const DieCon
 
 void HeatTransfer::assemble(const Model& md, State& st, DieContact& dies, double dt, bool pending, bool bound,
                             const Comm& comm) {
-  const double rho_c = md.heat_capacity;
+  const bool tabled = md.tabled_heat();
   const Scene::Thermal& air = scene_.thermal;
+  // the particles' field values: T_I, or with a specific heat table e_I = e(T_I), whose field's
+  // gradient is grad e^h and its temperature's grad e^h / (rho0 c(T^h)); the conductance bounds are
+  // then per unit of enthalpy (divided by rho0 c), against V_I in place of C_I
+  const std::vector<double>& field = field_values(md, st);
+  // the heat the point's pending rise stored (J)
+  auto stored = [&](std::size_t g) {
+    const double T = st.temperature[g], rise = st.heat_pending[g];
+    return tabled ? md.weight[g] * (md.enthalpy(T) - md.enthalpy(T - rise)) : md.heat_capacity * md.weight[g] * rise;
+  };
   // the points' fluxes w_g J_ref k J C^-1 grad T^h, and bounds on every contribution
   double most[2] = {0, 0};  // |heat| and |conductance| of one contribution
   for (std::size_t g = 0; g < md.m; ++g) {
-    double grad[3] = {0, 0, 0}, sum_dN = 0, n_max = 0;
+    double grad[3] = {0, 0, 0}, sum_dN = 0, n_max = 0, e = 0;
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
       const double* d = &md.dN[3 * std::size_t(k)];
-      const double T = st.particle_temperature[std::size_t(md.nbr[k])];
-      for (int i = 0; i < 3; ++i) grad[i] += d[i] * T;
+      const double v = field[std::size_t(md.nbr[k])];
+      for (int i = 0; i < 3; ++i) grad[i] += d[i] * v;
+      if (tabled) e += md.N[std::size_t(k)] * v;
       if (bound) sum_dN += std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
       if (pending) n_max = std::max(n_max, std::abs(md.N[std::size_t(k)]));
+    }
+    if (tabled) {
+      const double per_enthalpy = 1 / md.capacity_at(md.temperature_of(e));
+      for (int i = 0; i < 3; ++i) grad[i] *= per_enthalpy;
+      sum_dN *= per_enthalpy;
     }
     const double* K = &conductance_[6 * g];
     double* q = &flux_[3 * g];
@@ -192,13 +226,13 @@ void HeatTransfer::assemble(const Model& md, State& st, DieContact& dies, double
     q[2] = K[5] * grad[0] + K[4] * grad[1] + K[2] * grad[2];
     const double q_norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
     const double K_norm = std::sqrt(K[0] * K[0] + K[1] * K[1] + K[2] * K[2] + 2 * (K[3] * K[3] + K[4] * K[4] + K[5] * K[5]));
-    const double source = pending ? rho_c * md.weight[g] * std::abs(st.heat_pending[g]) * n_max : 0.0;
+    const double source = pending ? std::abs(stored(g)) * n_max : 0.0;
     spread_[g] = K_norm * sum_dN;
     most[0] = std::max(most[0], dt * q_norm * md.dN_max[g] + source);
     most[1] = std::max(most[1], spread_[g] * md.dN_max[g]);
   }
   // the faces' heat flows into the part (W) and conductances (W/K), each shared by the face's nodes
-  auto face_flow = [&](const FaceState& f, double& conductance) {
+  auto face_heat_flow = [&](const FaceState& f, double& conductance) {
     if (f.die >= 0) {
       const Die& die = scene_.dies[std::size_t(f.die)];
       conductance = die.heat_transfer * f.area;
@@ -208,6 +242,11 @@ void HeatTransfer::assemble(const Model& md, State& st, DieContact& dies, double
     conductance = f.area * (air.convection + radiation_conductance(air.emissivity, air.ambient_temperature, f.T));
     return f.area * (convection_flux(air.convection, air.ambient_temperature, f.T) +
                      radiation_flux(air.emissivity, air.ambient_temperature, f.T));
+  };
+  auto face_flow = [&](const FaceState& f, double& conductance) {
+    const double flow = face_heat_flow(f, conductance);
+    if (tabled) conductance /= md.capacity_at(f.T);
+    return flow;
   };
   if (pending)  // the friction's heat at the particle slaves
     for (std::size_t I = 0; I < md.n; ++I) most[0] = std::max(most[0], std::abs(st.surface_heat[I]));
@@ -223,11 +262,11 @@ void HeatTransfer::assemble(const Model& md, State& st, DieContact& dies, double
   std::fill(partial_.begin(), partial_.end(), Fixed(0));
   for (std::size_t g = 0; g < md.m; ++g) {
     const double* q = &flux_[3 * g];
-    const double stored = pending ? rho_c * md.weight[g] * st.heat_pending[g] : 0.0;
+    const double heat_stored = pending ? stored(g) : 0.0;
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
       const double* d = &md.dN[3 * std::size_t(k)];
       Fixed* acc = &partial_[2 * std::size_t(md.nbr[k])];
-      acc[0] += heat.fixed(md.N[std::size_t(k)] * stored - dt * (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]));
+      acc[0] += heat.fixed(md.N[std::size_t(k)] * heat_stored - dt * (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]));
       if (bound) acc[1] += conductance.fixed(spread_[g] * std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
     }
   }

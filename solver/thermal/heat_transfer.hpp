@@ -10,6 +10,11 @@
 // where the face touches one, else convection and radiation to the ambient; none on a symmetry plane)
 // and n_f the face's node count. The particles on a temperature face are held at its temperature.
 //
+// With a specific heat table c(T) the shapes carry the enthalpy per reference volume e = rho0 h(T),
+// h = int_0^T c: e^h(x) = sum_I N_I(x) e(T_I), the temperature T^h = e^-1(e^h) and its gradient
+// grad e^h / (rho0 c(T^h)); the update is V_I de_I/dt = (the same right-hand side) with V_I =
+// sum_g w_g N_I(X_g), so the heat content sum_I V_I e_I = sum_g w_g e(T_g) is kept exactly as well.
+//
 // Explicit: the temperature's stable step (Gershgorin's bound on the conductance matrix over the
 // capacities) is much longer than the mechanical one for metals, so the thermal update runs only when
 // the next mechanical step would carry it past that, every k steps (k is not fixed: it follows both
@@ -70,11 +75,13 @@ class HeatTransfer {
   void assemble(const Model& md, State& st, DieContact& dies, double dt, bool pending, bool bound, const Comm& comm);
   double stable_step(const Model& md, const Comm& comm) const;  // from bound_ (after an assemble with it)
   FixedScale lump(const Model& md, const std::vector<double>* values, const std::vector<double>* extra, const Comm& comm);
-  void settle(const Model& md, State& st) const;
+  void settle(const Model& md, State& st);
+  // The particles' field values: T_I, or with a specific heat table e(T_I) (into enthalpy_).
+  const std::vector<double>& field_values(const Model& md, const State& st);
   void hold_faces(State& st) const;
 
   const Scene& scene_;
-  std::vector<double> capacity_;  // C_I (J/K)
+  std::vector<double> capacity_;  // C_I (J/K); with a specific heat table V_I (m^3)
   std::vector<std::int32_t> fixed_particles_;
   std::vector<double> fixed_temperature_;
   int headroom_ = 0;
@@ -86,6 +93,7 @@ class HeatTransfer {
   std::vector<FaceState> faces_;
   std::vector<Fixed> partial_;       // 2 per particle: heat, conductance bound
   std::vector<double> heat_, bound_;
+  std::vector<double> enthalpy_, point_enthalpy_;  // e(T_I) and e(T_g), J/m^3: with a specific heat table
 };
 
 }  // namespace rk

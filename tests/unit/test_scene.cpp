@@ -237,9 +237,44 @@ TEST(Scene, AConductivityTableIsPiecewiseLinearAndHeldAtItsEnds) {
   EXPECT_EQ(s.material.conductivity_at(2000), 30);
   EXPECT_NE(error_of(replace(text, "[1300, 25], [1500, 30]", "[1500, 25], [1300, 30]")).find("entry 3: the temperatures must ascend"),
             std::string::npos);
-  EXPECT_NE(error_of(replace(text, "[300, 50]", "[300, -5]")).find("conductivities in (0, 1e4]"), std::string::npos);
+  EXPECT_NE(error_of(replace(text, "[300, 50]", "[300, -5]")).find("each conductivity W/(m K) in (0, 10000]"), std::string::npos);
   EXPECT_NE(error_of(replace(text, "  conductivity_table:", "  conductivity: 45\n  conductivity_table:")).find("exclude each other"),
             std::string::npos);
+}
+
+// c(T) and rho(T) tables: the enthalpy h = int_0^T c is the table's integral (c held at its first
+// value from 0 K), its inverse returns the temperature; the density table replaces the linear
+// expansion; a temperature outside a table, or a mass density off the table, is warned by its key.
+TEST(Scene, SpecificHeatAndDensityTables) {
+  const std::string text =
+      replace(hot("523.15"), "  specific_heat: 460\n",
+              "  specific_heat_table: [[290, 450], [1000, 700], [1500, 650]]\n  density_table: [[290, 9100], [1500, 8900]]\n");
+  const rk::Scene s = rk::load_scene(write_scene(text));
+  ASSERT_TRUE(s.material.thermal());
+  const rk::TemperatureTable& c = s.material.specific_heat_table;
+  EXPECT_EQ(s.material.specific_heat, 450);  // temperature on
+  EXPECT_DOUBLE_EQ(c.integral(200), 200 * 450.0);
+  // 290 * 450 + the trapezoid to 800 K (c from 450 to 450 + 250 * 510 / 710)
+  EXPECT_NEAR(c.integral(800), 290 * 450.0 + 510 * (450 + 450 + 250 * 510 / 710.0) / 2, 1e-6);
+  EXPECT_NEAR(c.integral(1600), 290 * 450.0 + 710 * 575.0 + 500 * 675.0 + 100 * 650.0, 1e-6);
+  for (double T : {150.0, 300.0, 655.5, 1000.0, 1234.5, 1500.0, 2000.0})
+    EXPECT_NEAR(c.inverse_integral(c.integral(T)), T, 1e-9 * T) << T;
+  EXPECT_EQ(error_of(replace(text, "  density_table:", "  thermal_expansion: 1.0e-5\n  density_table:"))
+                .find("'material.density_table' and 'material.thermal_expansion' exclude each other") == std::string::npos,
+            false);
+  EXPECT_NE(error_of(replace(text, "  specific_heat_table:", "  specific_heat: 460\n  specific_heat_table:")).find("exclude each other"),
+            std::string::npos);
+  EXPECT_NE(error_of(replace(text, "[1000, 700]", "[1000, 0]")).find("each specific heat J/(kg K) in (0, 100000]"), std::string::npos);
+  // every temperature (part 1423.15, die 523.15, air 293.15 K) lies in the tables; the part's density
+  // 8930 is the table's 8913 at 1423.15 K within 2 %
+  EXPECT_TRUE(rk::temperature_warnings(s).empty());
+  const auto warned = rk::temperature_warnings(rk::load_scene(write_scene(replace(text, "[1500, 650]", "[1400, 650]"))));
+  ASSERT_EQ(warned.size(), 1u);
+  EXPECT_NE(warned[0].find("initial_conditions.temperature = 1423.15 K lies outside material.specific_heat_table (290 to 1400 K)"),
+            std::string::npos) << warned[0];
+  const auto heavy = rk::temperature_warnings(rk::load_scene(write_scene(replace(text, "[1500, 8900]", "[1500, 8000]"))));
+  ASSERT_EQ(heavy.size(), 1u);
+  EXPECT_NE(heavy[0].find("material.density = 8930 kg/m^3 is the part's mass density"), std::string::npos) << heavy[0];
 }
 
 }  // namespace
