@@ -30,12 +30,14 @@ def case_folder(needs=("prep.json",)):
     return check
 
 
-def require_part(case: Path, parts, what: str) -> None:
-    """Exits with one message unless the case's part (geometry.cad of scene.resolved.yaml) is one of `parts`."""
+def require_part(case: Path, parts, what: str) -> str:
+    """Exits with one message unless the case's part (geometry.cad of scene.resolved.yaml) is one of `parts`;
+    returns the part's file name."""
     text = (case / "scene.resolved.yaml").read_text() if (case / "scene.resolved.yaml").exists() else ""
     cad = next((ln.split(":", 1)[1].strip() for ln in text.splitlines() if ln.strip().startswith("cad:")), "?")
     if Path(cad).name not in parts:
         raise SystemExit(f"{Path(sys.argv[0]).name}: {case}: expects a case of the {what}; this one's part is {Path(cad).name}")
+    return Path(cad).name
 
 
 def main_of(doc: str, check, summary, needs=("history.csv",), parts=None, what="") -> None:

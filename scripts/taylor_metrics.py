@@ -22,7 +22,12 @@ import numpy as np
 
 from case_check import case_folder, require_part
 
-TAYLOR_PARTS = ("taylor_bar.geo", "taylor_bar_full.geo")  # the quarter and the whole bar
+TAYLOR_PARTS = ("taylor_bar.geo", "taylor_bar_full.geo", "taylor_bar_jc1983.geo")  # the quarter and the whole bar; Johnson & Cook's
+
+# Johnson & Cook's (1983) OFHC copper cylinder fired at 190 m/s (geometry/taylor_bar/scene_jc1983.yaml),
+# as compiled by B. Banerjee (github.com/bbanerjee/HighRateExptData, TaylorData/MATLAB/plotOFHCCu.m):
+# L_f = 0.638 L0 and the impact face's diameter 1.78 D0, L0 = 25.4 mm, D0 = 7.62 mm
+EXPERIMENT = {"footprint_radius_mm": 0.5 * 1.78 * 7.62, "final_length_mm": 0.638 * 25.4}
 
 REFERENCE = {  # converged FE (Foulk et al. 2021, via the Carina.jl Taylor benchmark), the 2007 paper's RKPM and FEM
     "footprint_radius_mm": {"converged": 7.22, "seed_rkpm": 7.30, "seed_fem": 7.38},
@@ -104,7 +109,7 @@ def main() -> int:
     ap.add_argument("--axis", default="z", choices="xyz")
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args()
-    require_part(a.case, TAYLOR_PARTS, "Taylor bar (geometry/taylor_bar)")
+    part = require_part(a.case, TAYLOR_PARTS, "Taylor bar (geometry/taylor_bar)")
     frames = len(frames_of(a.case))
     if not -frames <= a.frame < frames:
         raise SystemExit(f"taylor_metrics.py: --frame {a.frame}: the case has frames 0 to {frames - 1}")
@@ -114,6 +119,9 @@ def main() -> int:
         return 0
     print(f"Taylor bar at t = {1e6 * m['time_s']:.1f} us, {m['particles']} particles")
     for key, label in (("footprint_radius_mm", "footprint radius"), ("final_length_mm", "final length")):
+        if part == "taylor_bar_jc1983.geo":  # another bar: its measured end state
+            print(f"  {label:17s} {m[key]:7.3f} mm   measured {EXPERIMENT[key]:.2f} ({100 * (m[key] / EXPERIMENT[key] - 1):+.2f} %)")
+            continue
         p = REFERENCE[key]
         print(f"  {label:17s} {m[key]:7.3f} mm   converged FE {p['converged']:.2f} ({100 * (m[key] / p['converged'] - 1):+.2f} %),"
               f" 2007 paper RKPM {p['seed_rkpm']:.2f}, FEM {p['seed_fem']:.2f}")

@@ -2,9 +2,9 @@
 // Symmetry planes x = 0 and y = 0, axis +z, impact face z = 0. Structured hexahedra (an O-grid:
 // a square core and two curved blocks) so that the particles (mesh nodes) lie on every surface.
 // rkprep sets h, the particle spacing in mm; h = 0.9 gives the seed's 1369 particles (37 x 37).
+// R and L may be set by a script that includes this one (taylor_bar_jc1983.geo).
 DefineConstant[ h = {0.9, Name "spacing (mm)"} ];
-R = 3.2;
-L = 32.4;
+DefineConstant[ R = 3.2, L = 32.4 ];
 n = Round(Pi * R / (4 * h));   // divisions of each core edge and of each quarter-arc half
 If (n < 1)
   n = 1;

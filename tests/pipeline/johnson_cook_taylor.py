@@ -6,8 +6,12 @@ its own plastic work, at 1.6 mm spacing to 20 us on 1 and 2 ranks:
   start's 293.15 K;
 - the frames carry the temperature (merged by rkpost into the VTU), within the history's min and max;
 - 1 and 2 ranks give the same particle positions and temperatures, bitwise (the fixed-point sums; the
-  history's double sums over ranks, such as the volume, may differ in their last digit)."""
+  history's double sums over ranks, such as the volume, may differ in their last digit).
+And a measured impact (geometry/taylor_bar/scene_jc1983.yaml: Johnson & Cook's 1983 copper cylinder at
+190 m/s, 0.9 mm spacing, 100 us): its end state against the converged computation and the experiment."""
 import json
+import subprocess
+import sys
 
 import meshio
 import numpy as np
@@ -52,3 +56,25 @@ rkcase.check(T[z < 2e-3].mean() > T[z > 20e-3].mean() + 50,
 other = meshio.read(runs[2] / "vtk" / "frame_00002.vtu")  # particles in global-id order in both
 same = np.array_equal(mesh.points, other.points) and np.array_equal(T, np.asarray(other.point_data["temperature"]).ravel())
 rkcase.check(same, "1 and 2 ranks give the same positions and temperatures, bitwise")
+
+# Johnson & Cook's cylinder (L0 25.4 mm, D0 7.62 mm, 190 m/s): measured L_f 16.21 mm and face radius
+# 6.78 mm (scripts/taylor_metrics.py, EXPERIMENT). Measured 2026-12-02 with the same law, 2 ranks:
+#   spacing 0.9 / 0.6 / 0.45 mm (1 073 / 3 913 / 9 633 particles): r_f 7.159 / 7.205 / 7.229 mm,
+#   L_f 17.284 / 17.305 / 17.317 mm, converging from below: the law predicts the bar 6.9 % long and
+#   its face 6.6 % wide at 0.45 mm.
+# The 0.9 mm run is held to its converged value within twice its distance from it (r_f 0.97 %, L_f
+# 0.19 %), and to the experiment's band that the converged law gives (within 8 %); the deviation from
+# the experiment is the law's (its constants were fitted to torsion and Hopkinson-bar tests, not to
+# this one) and is reported, not tuned away.
+case = tools.case("johnson_cook_1983")
+tools.prep(case, 1, scene=rkcase.ROOT / "geometry" / "taylor_bar" / "scene_jc1983.yaml")
+tools.solve(case, 1)
+tools.post(case)
+m = json.loads(subprocess.run([sys.executable, rkcase.ROOT / "scripts" / "taylor_metrics.py", case, "--json"],
+                              capture_output=True, text=True, check=True).stdout)
+converged = {"footprint_radius_mm": (7.229, 0.02), "final_length_mm": (17.317, 0.004)}
+measured = {"footprint_radius_mm": 0.5 * 1.78 * 7.62, "final_length_mm": 0.638 * 25.4}
+for key, (value, tol) in converged.items():
+    rkcase.check(abs(m[key] / value - 1) < tol, f"{key}: {m[key]:.3f} mm, the converged law's {value} within {tol:.1%}")
+    off = m[key] / measured[key] - 1
+    rkcase.check(0 < off < 0.08, f"{key}: {m[key]:.3f} mm against the measured {measured[key]:.2f} mm ({off:+.1%}, the law's)")
