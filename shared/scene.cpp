@@ -446,6 +446,8 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
         if (i != 5) o.hs_m[i] = m.number(names[i], i < 3 ? std::nullopt : std::optional<double>(0.0), {-100, 100});
       o.minimum_strain = m.number("minimum_strain", 0.01, {0, 1, true, false});
       o.minimum_strain_rate = m.number("minimum_strain_rate", 0.01, {0, 1e6, true, false});
+      o.strain_offset = m.number("strain_offset", 0.0, {0, 1});
+      o.strain_rate_offset = m.number("strain_rate_offset", 0.0, {0, 100});
       o.melting_temperature = m.number("melting_temperature", 0.0, {0, 5000});
       o.room_temperature = m.number("room_temperature", 293.15, {0, 1e4, true, false});
     }

@@ -79,6 +79,7 @@ struct Material {
   // Hansel-Spittel: A (Pa) and m1 .. m9 (no m6) with T in Celsius in the law; strain and rate minima
   double hs_a = 0, hs_m[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // hs_m[i - 1] = m_i (hs_m[5] unused)
   double minimum_strain = 0.01, minimum_strain_rate = 0.01;
+  double strain_offset = 0, strain_rate_offset = 0;  // the law at (strain + offset, rate + offset)
   // a flow stress table (model table): read and checked with the scene
   std::shared_ptr<const FlowTable> table;
   // temperature (any model; Johnson-Cook requires it): heating by plastic work, dT = taylor_quinney

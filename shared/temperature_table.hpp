@@ -4,6 +4,7 @@
 // and the integral's inverse the temperature of an enthalpy (the values are positive, so the
 // integral rises strictly).
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -44,8 +45,7 @@ class TemperatureTable {
 
   // The temperature T at which integral(T) = H.
   double inverse_integral(double H) const {
-    std::size_t k = 0;
-    while (k < p_.size() && H > integral_[k]) ++k;
+    const auto k = std::size_t(std::lower_bound(integral_.begin(), integral_.end(), H) - integral_.begin());
     if (k == 0) return H / p_.front().second;
     if (k == p_.size()) return p_.back().first + (H - integral_.back()) / p_.back().second;
     // on segment k: v0 s + (v1 - v0) s^2 / (2 L) = H - I0, s = T - T0, solved without cancellation
@@ -58,9 +58,8 @@ class TemperatureTable {
  private:
   // the index of the first point above T (0: below the table, size: above it)
   std::size_t segment(double T) const {
-    std::size_t k = 0;
-    while (k < p_.size() && T > p_[k].first) ++k;
-    return k;
+    return std::size_t(std::lower_bound(p_.begin(), p_.end(), T, [](const auto& p, double x) { return p.first < x; }) -
+                       p_.begin());
   }
   std::vector<std::pair<double, double>> p_;
   std::vector<double> integral_;  // the integral from 0 K to each point

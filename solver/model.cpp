@@ -232,7 +232,7 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   } else if (mat.model == MaterialModel::hansel_spittel) {
     const double a_m[9] = {mat.hs_a, mat.hs_m[0], mat.hs_m[1], mat.hs_m[2], mat.hs_m[3], mat.hs_m[4], mat.hs_m[6], mat.hs_m[7], mat.hs_m[8]};
     md.material = J2Params::hansel_spittel_law(mat.youngs_modulus, mat.poisson_ratio, a_m, mat.minimum_strain,
-                                               mat.minimum_strain_rate);
+                                               mat.minimum_strain_rate, mat.strain_offset, mat.strain_rate_offset);
   } else {
     md.material = mat.model == MaterialModel::j2_power
                       ? J2Params::power(mat.youngs_modulus, mat.poisson_ratio, mat.strength, mat.reference_strain, mat.exponent)

@@ -164,7 +164,7 @@ void J2Params::hansel_spittel_at(double ep, double rate, const AtTemperature& at
                                  double& dy_drate) const {
   // in logs: ln sigma is a sum of terms; below a minimum its slope is 0
   const bool strained = ep > hs_eps_min, fast = rate > hs_rate_min;
-  const double e = strained ? ep : hs_eps_min, r = fast ? rate : hs_rate_min;
+  const double e = (strained ? ep : hs_eps_min) + hs_eps_offset, r = (fast ? rate : hs_rate_min) + hs_rate_offset;
   y = std::exp(at.log_a + hs_m2 * std::log(e) + hs_m4 / e + at.strain_t * std::log1p(e) + hs_m7 * e +
                at.rate_exponent * std::log(r));
   dy_dep = strained ? y * (hs_m2 / e - hs_m4 / (e * e) + at.strain_t / (1 + e) + hs_m7) : 0.0;

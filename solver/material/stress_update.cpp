@@ -112,7 +112,7 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
           st.stretch_last[p] = s;
         }
         // the plastic work's heat, at once at the point (spread by conduction at the next thermal update)
-        if (!st.temperature.empty()) {
+        if (!st.temperature.empty() && b.dissipation[l] != 0) {
           const double heating = md.taylor_quinney * b.dissipation[l] / md.capacity_at(st.temperature[p]);
           st.temperature[p] += heating;
           if (!st.heat_pending.empty()) st.heat_pending[p] += heating;

@@ -1,5 +1,5 @@
-"""Hot upsetting (geometry/upsetting/scene_hot.yaml: AISI 1045 at 1150 C, dies at 250 C, Johnson-Cook,
-conduction, die contact conductance, convection and radiation, thermal expansion, shear friction,
+"""Hot upsetting (geometry/upsetting/scene_hot.yaml: C45 at 1150 C, dies at 250 C, Hansel-Spittel with
+c(T) and k(T) tables, conduction, die contact conductance, convection and radiation, thermal expansion, shear friction,
 a reference update)
 at 2.5 mm spacing to 0.3 s of its 1 s stroke:
 - the heat balances: the part's heat content change (rho c V times its mean temperature change) is
@@ -56,7 +56,7 @@ def final(case):
 one = run("hot_r1", 1)
 r = last_row(one)
 V = json.loads((one / "prep.json").read_text())["volume_m3"]
-content = rho * c * V * (float(r["temperature_mean"]) - T0)
+content = rho * c * V * (float(r["temperature_mean"]) - T0)  # c(T) is 650 J/(kg K) above 900 C, where every point stays
 sources = beta * float(r["plastic_work"]) + float(r["friction_work"]) - float(r["die.heat"]) - float(r["heat_to_ambient"])
 out = float(r["die.heat"]) + float(r["heat_to_ambient"])
 # measured 0 to the printed digits (1e-10 of the heat out); 1e-6 leaves the 10 digits of history.csv
@@ -65,18 +65,21 @@ rkcase.check(abs(content - sources) < 1e-6 * out,
              f"(friction {float(r['friction_work']):.3f} J, the die took {r['die.heat']} J)")
 x, T = final(one)
 top = x[:, 2] > x[:, 2].max() - 0.5e-3  # the particles on the die face (within a fifth of a spacing)
-# measured: coolest 1249 K on the die face, hottest 1428 K inside (the start 1423 K)
+# measured: coolest 1240 K on the die face (the start 1423 K)
 rkcase.check(T[top].min() < T0 - 150 and T.argmin() in np.where(top)[0],
              f"the die chilled the top: coolest {T.min():.0f} K, on the top face")
-rkcase.check(float(r["temperature_max"]) > T0 + 1, f"plastic work heats the inside: {float(r['temperature_max']):.1f} K")
+# measured 0.30 K above the start at 0.3 s (15 % reduction): the C45 law's 60 MPa heats the billet
+# 1.6 K adiabatically by then, and conduction spreads it toward the chilled face
+rkcase.check(float(r["temperature_max"]) > T0 + 0.15, f"plastic work heats the inside: {float(r['temperature_max']):.2f} K")
 summary = json.loads((one / "solve.json").read_text())
 rkcase.check(summary["reference_updates"] >= 1 and summary["thermal_updates"] < summary["steps"] / 5,
              f"{summary['reference_updates']} reference update(s), {summary['thermal_updates']} thermal updates in {summary['steps']} steps")
 
 every = run("hot_every_step", 1, ["thermal.max_steps_per_update=1"])
 e = last_row(every)
-# measured 2026-12-02: mean 0.022 K, coolest point 0.28 K, die heat 4.5e-4, air heat 8e-6 apart (the
-# explicit step's error); the bounds about twice those
+# measured 2026-12-02 (C45): mean 0.020 K, coolest point 0.17 K, die heat 4.3e-4, air heat 1.4e-5 apart
+# (the explicit step's error; 0.022 K, 0.28 K, 4.5e-4 and 8e-6 with the earlier Johnson-Cook billet);
+# the bounds about twice the larger
 for key, tol in (("temperature_mean", 0.05), ("temperature_min", 0.7)):
     gap = abs(float(e[key]) - float(r[key]))
     rkcase.check(gap < tol, f"{key}: an update every step and the default agree within {gap:.3f} K (< {tol})")

@@ -340,6 +340,26 @@ TEST(J2, HanselSpittelFlowAndSlopesMatchTheLaw) {
   EXPECT_NEAR(hs_flow(0.3, 1.0, 1373.15), 61.9e6, 0.1e6);  // the magnitude named above
 }
 
+// The Freiberg form takes the law at (ep + 0.1, rate + 0.1): the C45 constants of
+// geometry/materials/c45_hot.yaml at 1000 C, a strain of 0.3 and 1 /s give 107.3338 MPa, the formula
+// evaluated independently (Python, double precision); the slopes by central differences.
+TEST(J2, HanselSpittelWithOffsetsIsTheFreibergForm) {
+  const double c45[9] = {3268.49e6, -0.00267855, 0.34446, 0, 0.000551814, -0.00132042, 0.0166334, 0.000149907, 0};
+  const rk::J2Params p = rk::J2Params::hansel_spittel_law(120e9, 0.3, c45, 1e-6, 1e-6, 0.1, 0.1);
+  auto flow = [&](double ep, double rate) {
+    double y, h, hr;
+    p.flow(ep, rate, 1273.15, y, h, hr);
+    return y;
+  };
+  EXPECT_NEAR(flow(0.3, 1.0), 107.33381725830232e6, 1e-9 * 107.3e6);
+  double y, h, hr;
+  p.flow(0.3, 1.0, 1273.15, y, h, hr);
+  const double d = 1e-6;
+  EXPECT_NEAR(h, (flow(0.3 + d, 1.0) - flow(0.3 - d, 1.0)) / (2 * d), 1e-6 * y);
+  EXPECT_NEAR(hr, (flow(0.3, 1.0 + d) - flow(0.3, 1.0 - d)) / (2 * d), 1e-6 * std::abs(hr));
+  EXPECT_GT(flow(0.0, 0.0), 0.0);  // finite at rest: the offsets keep the law off its zero
+}
+
 TEST(J2, HanselSpittelReturnLandsOnTheRateDependentFlowStress) {
   // hot states: strain 0-1.5, 1000-1250 C, increments of 0.1 us to 1 ms. Before the bracket widened
   // for a softening law below its least rate, 16 of them were off by more than 2e-8, up to 1.4e-6.

@@ -192,12 +192,15 @@ TEST(Scene, AMaterialLibraryGivesTheKeysTheSceneDoesNotOverride) {
 }
 
 TEST(Scene, TheShippedMaterialsLoad) {
-  for (const char* name : {"aisi_1045", "ofhc_copper", "aluminium_2024"}) {
+  for (const char* name : {"aisi_1045", "ofhc_copper", "aluminium_2024", "c45_hot"}) {
     const std::string scene = replace(kGood, "  model: j2_linear\n  density: 8930\n  youngs_modulus: 117.0e9\n  poisson_ratio: 0.35\n"
                                              "  yield_stress: 400.0e6\n",
                                       std::string("  library: ") + RK_SOURCE_DIR + "/geometry/materials/" + name + ".yaml\n");
     const rk::Scene s = rk::load_scene(write_scene(scene));
     EXPECT_TRUE(s.material.thermal() && s.material.conducting()) << name;
+    if (std::string(name) == "c45_hot")  // the Freiberg form's offsets, EN 1993-1-2's c(T) with its peak at 735 C
+      EXPECT_TRUE(s.material.strain_offset == 0.1 && s.material.strain_rate_offset == 0.1 &&
+                  s.material.specific_heat_table.at(1008.15) == 5000 && s.material.conductivity_at(1423.15) == 27.3);
   }
 }
 
