@@ -49,6 +49,7 @@ rkcase.check(abs(first / (k * A) - 1) < 1e-3, f"m = 1: the interface transmits k
 r = rows(["dies[0].friction=0.05"])  # hybrid with m = 0.3: the Coulomb branch
 fx = sum(-float(row["floor.fx"]) for row in r[1:200]) / 199
 fz = sum(float(row["floor.fz"]) for row in r[1:200]) / 199
-# measured 4.4 % below mu: p is the cell's normal stress, the normal force the penalty springs'
+# measured 4.4 % below mu: p is the face's cell's normal stress, the normal force the penalty springs';
+# it converges at first order (2.4 % below at 0.625 mm, measured 2026-12-02)
 rkcase.check(abs(fx / fz / 0.05 - 1) < 0.1 and fx < 0.1 * force,
              f"hybrid: the mean friction {fx:.3f} N is mu times the mean normal force {fz:.3f} N, far below m k A")
