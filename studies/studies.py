@@ -46,6 +46,7 @@ TAYLOR_ELASTIC = "taylor_bar/scene_elastic.yaml"
 TAYLOR_JC = "taylor_bar/scene_johnson_cook.yaml"
 UPSET = "upsetting/scene.yaml"
 UPSET_FRICTION = "upsetting/scene_friction.yaml"
+UPSET_HOT = "upsetting/scene_hot.yaml"
 THIN_WALL = "thin_wall/scene.yaml"
 BEAM = "beam/scene.yaml"
 BAR_WALLS = "elastic_bar/scene_walls.yaml"
@@ -181,6 +182,9 @@ def features():
         for k, scene in (("frictionless", UPSET), ("friction 0.12", UPSET_FRICTION)):
             cases.append(Case("upsetting_" + k.replace(" ", "_").replace(".", ""),
                               **upsetting(2.0, "time.end=1.5e-3", "time.output_interval=1.5e-3", scene=scene), label=k))
+        # hot forging: C45 (Hansel-Spittel), conduction with c(T) and k(T) tables, die chilling, shear friction
+        cases.append(Case("upsetting_hot", scene=UPSET_HOT, prep=["discretization.spacing=2.5e-3"],
+                          solve=["time.end=0.1", "time.output_interval=0.1"], label="hot, C45 with conduction, 0.1 s"))
         cases.append(Case("upsetting_mass_scaling_off", **upsetting(2.0, "time.mass_scaling_dt=0", "time.end=1.5e-3",
                                                                     "time.output_interval=1.5e-3"), label="no mass scaling"))
     return cases
