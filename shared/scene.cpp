@@ -50,6 +50,10 @@ class Section {
   }
 
   std::string key_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  // "file:line: key 'path.key'", for a message about that key
+  std::string where_of(const std::string& key) const {
+    return where(file_, node_ ? node_[key] : YAML::Node(), key_path(key)) + ": key '" + key_path(key) + "'";
+  }
 
   YAML::Node get(const std::string& key, bool required) {
     seen_.insert(key);
@@ -292,7 +296,19 @@ DieMotion read_motion(Section& owner) {
   Section m = owner.section("motion", true);
   motion.direction = m.vec3("direction", std::nullopt, true);
   motion.curve = m.pairs("curve", "[time, stroke]", "the times");
-  if (!motion.curve.empty()) {
+  if (m.get("crank", false)) {  // a mechanical press
+    if (!motion.curve.empty()) throw Error(m.where_of("crank") + " and 'curve' exclude each other");
+    motion.speed = m.number("speed", 0.0, {0, 0});
+    Section c = m.section("crank", true);
+    DieMotion::Crank& k = motion.crank;
+    k.radius = c.number("radius", std::nullopt, {0, 10, true, false});
+    k.rod = c.number("rod", std::nullopt, {0, 100, true, false});
+    if (!(k.rod > k.radius))
+      throw Error(c.where_of("rod") + ": the connecting rod must be longer than the crank radius (" + std::to_string(k.radius) + " m)");
+    k.strokes_per_minute = c.number("strokes_per_minute", std::nullopt, {0, 1e4, true, false});
+    k.start_angle = c.number("start_angle", 0.0, {0, 180, true, false}) * M_PI / 180;
+    c.done();
+  } else if (!motion.curve.empty()) {
     motion.speed = m.number("speed", 0.0, {0, 0});
   } else {
     motion.speed = m.number("speed", std::nullopt, {0, 1e4});
@@ -639,6 +655,13 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     s.time.output_interval = t.number("output_interval", s.time.end / 10, {0, 1e6, true, false});
     s.time.mass_scaling_dt = t.number("mass_scaling_dt", 0.0, {0, 1});
     t.done();
+    for (const Die& d : s.dies)  // past bottom dead centre a crank press's ram rises off the part
+      if (d.motion.cranked() && s.time.end > d.motion.crank.bottom_dead_centre() * (1 + 1e-12)) {
+        char text[200];
+        std::snprintf(text, sizeof text, "key 'time.end' = %g s runs past the bottom dead centre of die '%s' at %.9g s; end there or before",
+                      s.time.end, d.name.c_str(), d.motion.crank.bottom_dead_centre());
+        throw Error(name + ": " + text);
+      }
   }
   {
     // on by default (LS-DYNA's 1.5 and 0.06) where compression can be fast; off in a mass-scaled
@@ -731,7 +754,25 @@ std::vector<std::string> temperature_warnings(const Scene& s) {
   return out;
 }
 
+double DieMotion::Crank::angle(double t) const { return start_angle + 2 * M_PI * strokes_per_minute / 60 * t; }
+
+double DieMotion::Crank::position(double theta) const {
+  const double lambda = radius / rod, s = std::sin(theta);
+  return radius * (1 - std::cos(theta)) + rod * (1 - std::sqrt(1 - lambda * lambda * s * s));
+}
+
+double DieMotion::Crank::bottom_dead_centre() const { return (M_PI - start_angle) / (2 * M_PI * strokes_per_minute / 60); }
+
+double DieMotion::fastest() const {
+  double v = std::abs(speed);
+  for (std::size_t k = 1; k < curve.size(); ++k) v = std::max(v, std::abs(rate(curve[k - 1].first)));
+  if (cranked())  // |ds/dtheta| <= r (1 + r / l) (the rod's term at most r/l of the crank's); times omega
+    v = std::max(v, crank.radius * (1 + crank.radius / crank.rod) * 2 * M_PI * crank.strokes_per_minute / 60);
+  return v;
+}
+
 double DieMotion::stroke(double t) const {
+  if (cranked()) return crank.position(crank.angle(t)) - crank.position(crank.start_angle);
   if (curve.empty()) return speed * t;
   if (t <= curve.front().first) return curve.front().second;
   for (std::size_t k = 1; k < curve.size(); ++k)
@@ -744,6 +785,11 @@ double DieMotion::stroke(double t) const {
 }
 
 double DieMotion::rate(double t) const {
+  if (cranked()) {  // ds/dtheta dtheta/dt
+    const double theta = crank.angle(t), lambda = crank.radius / crank.rod, s = std::sin(theta);
+    return crank.radius * s * (1 + lambda * std::cos(theta) / std::sqrt(1 - lambda * lambda * s * s)) * 2 * M_PI *
+           crank.strokes_per_minute / 60;
+  }
   if (curve.empty()) return speed;
   for (std::size_t k = 1; k < curve.size(); ++k)
     if (t < curve[k].first && t >= curve[k - 1].first)

@@ -31,8 +31,19 @@ struct DieMotion {
   Vec3 direction{};                               // unit: the pressing direction (stroke is along it)
   double speed = 0;                               // m/s, constant (when `curve` is empty)
   std::vector<std::pair<double, double>> curve;   // (time s, stroke m), piecewise linear
+  // a mechanical (crank) press: the slider-crank law s(theta) = r (1 - cos theta) + l (1 - sqrt(1 -
+  // (r/l)^2 sin^2 theta)) below top dead centre, theta = start_angle + 2 pi n t / 60; the stroke is
+  // s(theta(t)) - s(start_angle), so the die starts where the scene's CAD puts it
+  struct Crank {
+    double radius = 0, rod = 0, strokes_per_minute = 0, start_angle = 0;  // m, m, 1/min, rad from top dead centre
+    double angle(double t) const;
+    double position(double theta) const;  // s(theta)
+    double bottom_dead_centre() const;    // the time theta reaches pi
+  } crank;
+  bool cranked() const { return crank.radius > 0; }
   double stroke(double t) const;                  // m along `direction`
   double rate(double t) const;                    // d stroke / dt
+  double fastest() const;                         // the largest |rate| over the motion (m/s)
 };
 
 struct Die {

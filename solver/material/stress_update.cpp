@@ -154,12 +154,8 @@ double fastest_speed(const Scene& scene, const double lo[3], const double hi[3])
     v2 = std::max(v2, s2);
   }
   double v = std::sqrt(v2);
-  auto fastest = [&](const DieMotion& m) {
-    v = std::max(v, std::abs(m.speed));
-    for (std::size_t k = 1; k < m.curve.size(); ++k) v = std::max(v, std::abs(m.rate(m.curve[k - 1].first)));
-  };
-  for (const auto& d : scene.dies) fastest(d.motion);
-  for (const auto& f : scene.prescribed_faces) fastest(f.motion);
+  for (const auto& d : scene.dies) v = std::max(v, d.motion.fastest());
+  for (const auto& f : scene.prescribed_faces) v = std::max(v, f.motion.fastest());
   return v;
 }
 

@@ -280,4 +280,32 @@ TEST(Scene, SpecificHeatAndDensityTables) {
   EXPECT_NE(heavy[0].find("material.density = 8930 kg/m^3 is the part's mass density"), std::string::npos) << heavy[0];
 }
 
+// A crank press: the stroke from the start angle, the rate its derivative (central differences),
+// zero at bottom dead centre; a rod not longer than the crank and a crank with a curve are refused.
+TEST(Scene, CrankPressFollowsTheSliderCrankLaw) {
+  const std::string crank = "crank: {radius: 0.05, rod: 0.3, strokes_per_minute: 60, start_angle: 90}";
+  const std::string text = replace(hot("523.15"), "speed: 0.01}", crank + "}");
+  ASSERT_NE(text, hot("523.15"));
+  const rk::Scene s = rk::load_scene(write_scene(text));
+  const rk::DieMotion& m = s.dies.at(0).motion;
+  ASSERT_TRUE(m.cranked());
+  EXPECT_EQ(m.stroke(0), 0.0);
+  // at 90 degrees: r (1 - cos) + l (1 - sqrt(1 - (r/l)^2)) = 0.05 + 0.3 (1 - sqrt(35/36)); at 180: 2 r
+  EXPECT_NEAR(m.crank.position(M_PI / 2), 0.05 + 0.3 * (1 - std::sqrt(35.0 / 36.0)), 1e-15);
+  EXPECT_NEAR(m.stroke(m.crank.bottom_dead_centre()), 0.1 - m.crank.position(M_PI / 2), 1e-15);
+  EXPECT_NEAR(m.crank.bottom_dead_centre(), 0.25, 1e-15);  // a quarter turn at 1 turn per second
+  for (double t : {0.0, 0.05, 0.1, 0.2}) {
+    const double d = 1e-6;
+    EXPECT_NEAR(m.rate(t), (m.stroke(t + d) - m.stroke(t - d)) / (2 * d), 1e-7) << t;
+  }
+  EXPECT_NEAR(m.rate(0), 0.05 * 2 * M_PI, 1e-12);  // at 90 degrees the rod is square to the ram's path
+  EXPECT_NEAR(m.rate(0.25), 0.0, 1e-12);
+  EXPECT_LE(m.rate(0.1), m.fastest());
+  EXPECT_NE(error_of(replace(text, "rod: 0.3", "rod: 0.04")).find("the connecting rod must be longer than the crank radius"),
+            std::string::npos);
+  EXPECT_NE(error_of(replace(text, "end: 1.0e-6", "end: 0.3")).find("'time.end' = 0.3 s runs past the bottom dead centre of die 'top' at 0.25 s"),
+            std::string::npos);
+  EXPECT_NE(error_of(replace(text, "crank: {", "curve: [[0, 0], [1, 1]], crank: {")).find("exclude each other"), std::string::npos);
+}
+
 }  // namespace
