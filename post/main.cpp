@@ -137,10 +137,11 @@ std::pair<rk::VtuCells, std::vector<std::int64_t>> read_cells(const std::string&
 
 // --fields: a comma-separated subset of kFields ("all": every one).
 // thermal: how many of kThermalFields the frames hold (0 without a temperature; 1, the temperature
-// alone, in frames of rksolve before 2026-12-02)
-std::vector<Field> select_fields(const std::string& list, int thermal) {
+// alone, in frames of rksolve before 2026-12-02); damage: the frames hold kDamageFields
+std::vector<Field> select_fields(const std::string& list, int thermal, bool damage) {
   std::vector<Field> known(std::begin(kFields), std::end(kFields));
   known.insert(known.end(), std::begin(rk::kThermalFields), std::begin(rk::kThermalFields) + thermal);
+  if (damage) known.insert(known.end(), std::begin(rk::kDamageFields), std::end(rk::kDamageFields));
   if (list == "all") return known;
   std::vector<Field> out;
   std::stringstream ss(list);
@@ -231,7 +232,7 @@ int run(int argc, char** argv) {
     if (fs::exists(first) && !rk::H5File(first, rk::H5File::Mode::read).exists(rk::result_frame_group(0) + rk::kThermalFields[1].name))
       thermal = 1;
   }
-  const std::vector<Field> fields = select_fields(field_list, thermal);
+  const std::vector<Field> fields = select_fields(field_list, thermal, solved && scene.damage.on());
   const std::vector<int> chosen = select_frames(frame_list, solved ? int(frames) : 1);
   const auto [cells, cell_rank] = read_cells(case_dir, ranks, scene.prep_hash);
   std::vector<rk::PvdEntry> index;

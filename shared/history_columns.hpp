@@ -3,7 +3,8 @@
 // modeled part. The columns are named: readers find a column by its name, never by its position.
 // First the run's scalars (kHistoryScalars), then where the material has a temperature its
 // mass-weighted mean, minimum and maximum over the part's points (kTemperatureColumns), with
-// conduction the heat given to the ambient (kConductionColumns), then per rigid wall its force along
+// conduction the heat given to the ambient (kConductionColumns), with damage its criteria's largest
+// values (kDamageColumns), then per rigid wall its force along
 // its normal, per die its stroke, press force (along its motion, times force_factor), force
 // components, press work and with conduction the heat conducted into it,
 // per fixed face its reaction components, per prescribed face its stroke and reaction components.
@@ -35,6 +36,9 @@ inline constexpr HistoryColumn kTemperatureColumns[] = {
 // With heat conduction (material.conductivity): the heat the part gave the ambient air by convection
 // and radiation, cumulative; and per die (its column DIE.heat) the heat conducted into it.
 inline constexpr HistoryColumn kConductionColumns[] = {{"heat_to_ambient", "J"}};
+
+// With a `damage` section: each criterion's largest value over the part's points.
+inline constexpr HistoryColumn kDamageColumns[] = {{"damage_cockcroft_latham_max", "-"}, {"damage_brozzo_max", "-"}};
 
 // The scene's columns in order: the scalars, then its walls', dies' and faces' columns.
 std::vector<std::string> history_columns(const Scene& scene);

@@ -4,7 +4,8 @@
 // (kResultFrameFormat, checked by the reader), `rank`, `ranks`, `scene_hash` (of the subdomains it
 // was computed on: a reader merges only its own case's frames). Datasets under frames/FFFFF/:
 // time (s), step, global_id, x (3 per particle: the material's current position X + u^h(X), m),
-// then kFrameFields, and kThermalFields where the material has a temperature.
+// then kFrameFields, kThermalFields where the material has a temperature and kDamageFields where
+// the scene asks for damage.
 #pragma once
 #include <cstdint>
 #include <cstdio>
@@ -31,6 +32,10 @@ inline constexpr FrameField kFrameFields[] = {{"displacement", 3, "m"},   {"velo
 // strain, rate and temperature. (Frames of rksolve before 2026-12-02 hold only the first.)
 inline constexpr FrameField kThermalFields[] = {
     {"temperature", 1, "K"}, {"plastic_strain_rate", 1, "1/s"}, {"flow_stress", 1, "Pa"}};
+
+// Written only where the scene has a `damage` section: the criteria of solver/material/damage.hpp
+// (0 for one the scene does not ask for).
+inline constexpr FrameField kDamageFields[] = {{"damage_cockcroft_latham", 1, "-"}, {"damage_brozzo", 1, "-"}};
 
 // CASE/results/rank_NNNN
 inline std::string result_frame_dir(const std::string& case_dir, int rank) {

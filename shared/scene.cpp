@@ -631,6 +631,21 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     }
   }
   {
+    Section d = top.section("damage");
+    auto criterion = [&](const char* key, bool& on, double& critical) {
+      if (!d.given() || !d.get(key, false)) return;  // get() of an absent section is a null node
+      on = true;
+      Section c = d.section(key);
+      critical = c.number("critical", 0.0, {0, 1e3});
+      c.done();
+    };
+    criterion("cockcroft_latham", s.damage.cockcroft_latham, s.damage.cockcroft_latham_critical);
+    criterion("brozzo", s.damage.brozzo, s.damage.brozzo_critical);
+    d.done();
+    if (d.given() && !s.damage.on())
+      throw Error(name + ": section 'damage' names no criterion (cockcroft_latham, brozzo)");
+  }
+  {
     Section c = top.section("contact");
     s.contact.penalty_scale = c.number("penalty_scale", s.contact.penalty_scale, {0, 1, true, false});
     c.done();

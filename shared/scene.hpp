@@ -180,6 +180,14 @@ struct Scene {
     std::vector<TemperatureFace> fixed_faces;
   } thermal;
 
+  // Ductile damage integrated at the integration points (solver/material/damage.hpp), each criterion
+  // only where its key is given; a critical value > 0 marks where a crack is predicted.
+  struct Damage {
+    bool cockcroft_latham = false, brozzo = false;
+    double cockcroft_latham_critical = 0, brozzo_critical = 0;
+    bool on() const { return cockcroft_latham || brozzo; }
+  } damage;
+
   struct Contact {
     double penalty_scale = 0.25;  // k_I = scale * m_I / dt^2 (< 1: contact never limits the step)
   } contact;

@@ -369,6 +369,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   for (const Die& d : scene_.dies) rates = rates || d.shear_factor > 0;
   if (rates) st_.plastic_rate.assign(md_.m, 0.0);
   if (md_.thermal_strain()) st_.stretch_last.assign(md_.m, 0.0);
+  if (scene_.damage.on()) st_.damage.assign(2 * md_.m, 0.0);
   if (scene_.material.conducting())  // set by HeatTransfer::start or read from the checkpoint
     st_.particle_temperature.assign(md_.n, scene_.initial.temperature), st_.heat_pending.assign(md_.m, 0.0),
     st_.surface_heat.assign(md_.n, 0.0);

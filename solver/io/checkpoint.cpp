@@ -48,6 +48,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     }
     if (!st.temperature.empty()) f.write("points/temperature", st.temperature);
     if (!st.stretch_last.empty()) f.write("points/stretch_last", st.stretch_last);
+    if (!st.damage.empty()) f.write("points/damage", st.damage, 2);
     if (!st.plastic_rate.empty()) f.write("points/plastic_rate", st.plastic_rate);
     if (!st.particle_temperature.empty()) {  // conduction (thermal/heat_transfer.hpp)
       f.write("particles/temperature", st.particle_temperature);
@@ -78,6 +79,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
                (st.q.empty() || (check.read<double>("points/q") == st.q && check.read<double>("points/J_last") == st.J_last)) &&
                (st.temperature.empty() || check.read<double>("points/temperature") == st.temperature) &&
                (st.stretch_last.empty() || check.read<double>("points/stretch_last") == st.stretch_last) &&
+               (st.damage.empty() || check.read<double>("points/damage", 2) == st.damage) &&
                (st.plastic_rate.empty() || check.read<double>("points/plastic_rate") == st.plastic_rate) &&
                (st.particle_temperature.empty() || (check.read<double>("particles/temperature") == st.particle_temperature &&
                                                     check.read<double>("points/heat_pending") == st.heat_pending &&
@@ -191,6 +193,12 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
       throw Error(path + ": the checkpoint holds no thermal stretches (written without a thermal strain); restart with the same scene");
     st.stretch_last = f.read<double>("points/stretch_last");
     if (st.stretch_last.size() != md.m) throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
+  }
+  if (!st.damage.empty()) {
+    if (!f.exists("points/damage"))
+      throw Error(path + ": the checkpoint holds no damage (written without a 'damage' section); restart with the same scene");
+    st.damage = f.read<double>("points/damage", 2);
+    if (st.damage.size() != 2 * md.m) throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
   }
   if (!st.plastic_rate.empty()) {  // shear friction's flow stress takes the rate
     if (!f.exists("points/plastic_rate"))

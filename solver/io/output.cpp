@@ -17,10 +17,11 @@
 namespace rk {
 namespace {
 
-// weight, eq_plastic_strain, von_mises, pressure, Cauchy stress (xx, yy, zz, xy, yz, zx), and where
-// the material has a temperature the temperature, the plastic strain rate and the flow stress
-constexpr int kProjected = 13;
-constexpr int kStress = 4, kTemperature = 10;  // the first stress component's column, the temperature's
+// weight, eq_plastic_strain, von_mises, pressure, Cauchy stress (xx, yy, zz, xy, yz, zx); where the
+// material has a temperature the temperature, the plastic strain rate and the flow stress; with damage
+// its two criteria
+constexpr int kBase = 10, kThermal = 3, kDamage = 2, kProjected = kBase + kThermal + kDamage;
+constexpr int kStress = 4;  // the first stress component's column
 
 // Cauchy von Mises stress and pressure of a point from its Kirchhoff stress (sigma = tau / J).
 void cauchy_measures(const double* tau, double J, double& von_mises, double& pressure) {
@@ -42,7 +43,9 @@ double point_heat(const State& st, std::size_t g) {
 
 ResultWriter::ResultWriter(const std::string& case_dir, const Model& md, const std::string& scene_hash,
                            std::int64_t resume_frames)
-    : case_dir_(case_dir), scene_hash_(scene_hash), projected_(md.heat_capacity > 0 ? kProjected : kTemperature),
+    : case_dir_(case_dir), scene_hash_(scene_hash), thermal_col_(md.heat_capacity > 0 ? kBase : -1),
+      damage_col_(md.damage_cockcroft_latham || md.damage_brozzo ? kBase + (thermal_col_ > 0 ? kThermal : 0) : -1),
+      projected_(kBase + (thermal_col_ > 0 ? kThermal : 0) + (damage_col_ > 0 ? kDamage : 0)),
       exchange_(md, projected_), partial_(std::size_t(projected_) * md.n) {
   const std::string dir = result_frame_dir(case_dir, md.rank);
   std::filesystem::create_directories(dir);
@@ -70,10 +73,13 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     const double* tau = &st.tau[6 * g];
     const double J = st.total_J(g);
     const double rate = st.plastic_rate.empty() ? 0.0 : st.plastic_rate[g];
-    const double values[kProjected] = {1.0,        st.ep[g],   vm,         p,          tau[0] / J, tau[1] / J,
-                                       tau[2] / J, tau[3] / J, tau[4] / J, tau[5] / J,
-                                       point_heat(st, g), rate,
-                                       np > kTemperature ? md.material.flow_stress(st.ep[g], rate, st.temperature[g]) : 0.0};
+    double values[kProjected] = {1.0,        st.ep[g],   vm,         p,          tau[0] / J, tau[1] / J,
+                                 tau[2] / J, tau[3] / J, tau[4] / J, tau[5] / J};
+    if (thermal_col_ > 0) {
+      values[thermal_col_] = point_heat(st, g), values[thermal_col_ + 1] = rate;
+      values[thermal_col_ + 2] = md.material.flow_stress(st.ep[g], rate, st.temperature[g]);
+    }
+    if (damage_col_ > 0) values[damage_col_] = st.damage[2 * g], values[damage_col_ + 1] = st.damage[2 * g + 1];
     double nmax = 0;
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) nmax = std::max(nmax, std::abs(md.N[k]));
     for (int c = 0; c < np; ++c) {
@@ -95,7 +101,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
 
   // Displacements: the material's, u^h(X_I) = sum_J N_J(X_I) d_J (RK coefficients are not values).
   std::vector<std::int64_t> gid;
-  std::vector<double> x, u, v, ep, vm, pr, sigma, temperature, rate, flow;
+  std::vector<double> x, u, v, ep, vm, pr, sigma, temperature, rate, flow, cockcroft_latham, brozzo;
   for (std::size_t I = 0; I < md.n; ++I) {
     if (!md.owned[I]) continue;
     gid.push_back(md.global_id[I]);
@@ -112,7 +118,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     vm.push_back(value(2));
     pr.push_back(value(3));
     for (int c = kStress; c < kStress + 6; ++c) sigma.push_back(value(c));
-    if (np > kTemperature) {  // with conduction T^h(X_I) and the pending heat, else the points' temperature
+    if (thermal_col_ > 0) {  // with conduction T^h(X_I) and the pending heat, else the points' temperature
       double T = 0;  // with a specific heat table the shapes carry the enthalpy (thermal/heat_transfer.hpp)
       if (!st.particle_temperature.empty()) {
         for (auto k = md.material_offsets[I]; k < md.material_offsets[I + 1]; ++k) {
@@ -121,9 +127,10 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
         }
         if (md.tabled_heat()) T = md.temperature_of(T);
       }
-      temperature.push_back(T + value(kTemperature));
-      rate.push_back(value(kTemperature + 1)), flow.push_back(value(kTemperature + 2));
+      temperature.push_back(T + value(thermal_col_));
+      rate.push_back(value(thermal_col_ + 1)), flow.push_back(value(thermal_col_ + 2));
     }
+    if (damage_col_ > 0) cockcroft_latham.push_back(value(damage_col_)), brozzo.push_back(value(damage_col_ + 1));
   }
   const std::string path = result_frame_path(case_dir_, md.rank, frames_), tmp = path + ".tmp";
   try {
@@ -141,8 +148,11 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     static_assert(std::size(fields) == std::size(kFrameFields));
     for (std::size_t k = 0; k < std::size(fields); ++k)
       f.write(g + kFrameFields[k].name, *fields[k], std::size_t(kFrameFields[k].components));
-    if (np > kTemperature)
+    if (thermal_col_ > 0)
       for (const auto& [field, data] : {std::pair{kThermalFields[0], &temperature}, {kThermalFields[1], &rate}, {kThermalFields[2], &flow}})
+        f.write(g + field.name, *data);
+    if (damage_col_ > 0)
+      for (const auto& [field, data] : {std::pair{kDamageFields[0], &cockcroft_latham}, {kDamageFields[1], &brozzo}})
         f.write(g + field.name, *data);
     f.close();
   } catch (const Error&) {  // no partial frame is left behind

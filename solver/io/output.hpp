@@ -28,7 +28,8 @@ class ResultWriter {
  private:
   std::string case_dir_, scene_hash_;
   int frames_ = 0;
-  int projected_;  // point quantities spread to the particles (with the temperature or without)
+  // point quantities spread to the particles, and the columns of the thermal and damage ones (-1: none)
+  int thermal_col_, damage_col_, projected_;
   OverlapExchange exchange_;
   std::vector<Fixed> partial_;
   int headroom_ = -1;  // of the projection sums (force_headroom), set at the first frame

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "process_memory.hpp"
+#include "rk/kinematics.hpp"
 
 namespace rk {
 
@@ -43,6 +44,29 @@ RunSummary write_run_report(const std::string& case_dir, const Scene& scene, con
     if (touched[d] == 0)
       s.warnings.push_back("die '" + scene.dies[d].name + "' never touched the part in this run: check its CAD unit (dies[" +
                            std::to_string(d) + "].unit), its position and its motion's direction");
+  // A crack predicted: a damage criterion at or above the scene's critical value, where it is largest
+  const std::pair<const char*, double> criteria[2] = {{"cockcroft_latham", scene.damage.cockcroft_latham_critical},
+                                                      {"brozzo", scene.damage.brozzo_critical}};
+  for (int k = 0; k < 2 && !st.damage.empty(); ++k) {
+    double most = 0, at[4] = {0, 0, 0, 0};  // the largest value; the position(s) holding it, and their count
+    std::size_t where = 0;
+    for (std::size_t g = 0; g < md.m; ++g)
+      if (st.damage[2 * g + k] > most) most = st.damage[2 * g + k], where = g;
+    double largest = most;
+    comm.max(&largest, 1);
+    if (most == largest && largest > 0) point_position(md, st, where, at), at[3] = 1;
+    comm.sum(at, 4);
+    const double critical = criteria[k].second;
+    if (critical > 0 && largest >= critical) {
+      char text[300];
+      std::snprintf(text, sizeof text,
+                    "crack predicted: damage %s reached %.4g (critical %.4g, damage.%s.critical) at (%.4g, %.4g, %.4g) m; "
+                    "the frames' field damage_%s shows where",
+                    criteria[k].first, largest, critical, criteria[k].first, at[0] / at[3], at[1] / at[3], at[2] / at[3],
+                    criteria[k].first);
+      s.warnings.push_back(text);
+    }
+  }
   if (comm.rank() != 0) return s;
   for (const auto& w : s.warnings) std::fprintf(stderr, "rksolve: warning: %s\n", w.c_str());
   for (const auto& w : temperature_warnings(scene)) s.warnings.push_back(w);  // printed at the start

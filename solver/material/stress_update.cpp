@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "material/damage.hpp"
 #include "material/j2_plasticity.hpp"
 
 namespace rk {
@@ -71,6 +72,26 @@ void check_pressure(const Model& md, const PressureBound& b, double floor, doubl
   if (b.ratio > 0 && !(r <= b.ratio) && h.ok) h.ok = false, h.point = g, h.pressure_stop = true;
 }
 
+// The most points one group holds: a hexahedron at gauss_order 3 (27), or a batch of kLanes.
+constexpr std::size_t kMaxCellPoints = 32;
+static_assert(kMaxCellPoints >= 27 && kMaxCellPoints >= std::size_t(kLanes));
+
+// The damage criteria over the points g0 .. g1 of one cell (or batch), at the stress the force uses:
+// with F-bar the point's deviator and the cell's pressure (Kirchhoff, pc per unit J), which is free of
+// the point-to-point pressure scatter of the point's own.
+void accumulate_damage(const Model& md, State& st, std::size_t g0, std::size_t g1, double pc, const double* increment) {
+  for (auto p = g0; p < g1; ++p) {
+    const double dep = increment[p - g0];
+    if (!(dep > 0)) continue;
+    const double* t = &st.tau[6 * p];
+    const double shift = md.fbar ? st.total_J(p) * pc - (t[0] + t[1] + t[2]) / 3 : 0.0;
+    const double s[6] = {t[0] + shift, t[1] + shift, t[2] + shift, t[3], t[4], t[5]};
+    const DamageIncrement d = damage_increment(s, dep);
+    st.damage[2 * p] += md.damage_cockcroft_latham ? d.cockcroft_latham : 0.0;
+    st.damage[2 * p + 1] += md.damage_brozzo ? d.brozzo : 0.0;
+  }
+}
+
 }  // namespace
 
 StressHealth update_stress(const Model& md, State& st, const PressureBound& bound) {
@@ -92,6 +113,7 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
       }
     if (!cell_ok) continue;
     double wp = 0, wJ = 0, w = 0, ep_max = 0;
+    double increment[kMaxCellPoints];  // the points' plastic strain increments (for the damage)
     for (auto g = g0; g < g1; g += kLanes) {
       const int n = int(std::min<std::size_t>(kLanes, g1 - g));
       load(md, st, c, g, n, b);
@@ -102,6 +124,7 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
         const double trace_before = t[0] + t[1] + t[2];
         for (int i = 0; i < 6; ++i) t[i] = b.tau.v[i][l], st.cp_inv[6 * p + i] = b.cp_inv.v[i][l];
         if (!st.plastic_rate.empty()) st.plastic_rate[p] = b.dt > 0 ? (b.ep[l] - st.ep[p]) / b.dt : 0.0;
+        if (!st.damage.empty()) increment[p - g0] = b.ep[l] - st.ep[p];
         st.ep[p] = b.ep[l];
         st.psi[p] = b.psi[l];
         st.wp[p] += b.dissipation[l];
@@ -135,6 +158,7 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
     if (md.fbar && health.ok) check_pressure(md, bound, floor, (st.q.empty() ? 0.0 : st.q[g0]) - wp / wJ, ep_max, g0, health);
     if (!health.ok) continue;
     const double pc = md.fbar ? wp / wJ : 0.0;
+    if (!st.damage.empty()) accumulate_damage(md, st, g0, g1, pc, increment);
     for (auto g = g0; g < g1; g += kLanes) first_piola(md, st, g, int(std::min<std::size_t>(kLanes, g1 - g)), pc);
   }
   st.thermal_work += thermal_work;

@@ -1,6 +1,8 @@
 """Frictionless upsetting of an aluminium cylinder at a coarse resolution against the closed form
 (BENCHMARKS.md case 2): die force F = sigma(ep) A0 H0 / H and diameter D0 sqrt(H0/H) at 10-50 %
-height reduction, quasi-static (kinetic/internal < 1 %); and a short run on 2 ranks equal to 1 rank."""
+height reduction, quasi-static (kinetic/internal < 1 %); the normalized Cockcroft-Latham damage stays
+near zero (homogeneous compression has no tensile principal stress); and a short run on 2 ranks equal to
+1 rank."""
 import json
 
 import meshio
@@ -14,7 +16,7 @@ scene = rkcase.ROOT / "geometry" / "upsetting" / "scene.yaml"
 coarse = ["discretization.spacing=2e-3"]
 case = tools.case("upsetting_coarse")
 tools.prep(case, 1, scene=scene, sets=coarse)
-tools.solve(case, 1, sets=["time.mass_scaling_dt=3e-7", "time.output_interval=1e-3"])
+tools.solve(case, 1, sets=["time.mass_scaling_dt=3e-7", "time.output_interval=1e-3", "damage.cockcroft_latham.critical=0"])
 tools.post(case)
 res = check(case)
 print(json.dumps(res, indent=2))
@@ -25,6 +27,11 @@ for f in res["force"]:
 rkcase.check(len(res["force"]) == 5, "reached 50 % reduction")
 rkcase.check(abs(res["diameter_error"]) < 0.005, f"diameter {res['diameter_mm']:.2f} mm ({100 * res['diameter_error']:+.2f} %)")
 rkcase.check(res["max_kinetic_internal_ratio"] < 0.01, f"quasi-static: KE/IE <= {100 * res['max_kinetic_internal_ratio']:.2f} %")
+last = meshio.read(sorted((case / "vtk").glob("frame_*.vtu"))[-1]).point_data
+ratio = float((last["damage_cockcroft_latham"].ravel() / np.maximum(last["eq_plastic_strain"].ravel(), 0.1)).max())
+# measured 2026-12-02: 0.049 of the plastic strain at most, from the lateral stresses' scatter about 0
+# (2.5 % of sigma_eq at 2 mm); with friction the barrel's equator reaches 0.13 (upsetting_friction.py)
+rkcase.check(ratio < 0.09, f"frictionless: Cockcroft-Latham at most {ratio:.3f} of the plastic strain")
 
 frames = {}
 for ranks in (1, 2):
