@@ -308,4 +308,19 @@ TEST(Scene, CrankPressFollowsTheSliderCrankLaw) {
   EXPECT_NE(error_of(replace(text, "crank: {", "curve: [[0, 0], [1, 1]], crank: {")).find("exclude each other"), std::string::npos);
 }
 
+// damage: off without the section; each criterion on where its key is given, with or without a
+// critical value; an empty section and an unknown criterion refused by name.
+TEST(Scene, DamageCriteriaOnlyWhereNamed) {
+  EXPECT_FALSE(rk::load_scene(write_scene(kGood)).damage.on());
+  const rk::Scene s = rk::load_scene(write_scene(std::string(kGood) + "damage:\n  brozzo: {}\n  cockcroft_latham: {critical: 0.4}\n"));
+  EXPECT_TRUE(s.damage.brozzo && s.damage.cockcroft_latham);
+  EXPECT_EQ(s.damage.brozzo_critical, 0.0);
+  EXPECT_EQ(s.damage.cockcroft_latham_critical, 0.4);
+  const rk::Scene one = rk::load_scene(write_scene(std::string(kGood) + "damage:\n  brozzo:\n"));
+  EXPECT_TRUE(one.damage.brozzo && !one.damage.cockcroft_latham);
+  EXPECT_NE(error_of(std::string(kGood) + "damage:\n  oyane: {}\n").find("oyane"), std::string::npos);
+  EXPECT_NE(error_of(std::string(kGood) + "damage:\n  cockcroft_latham: {critical: -1}\n").find("damage.cockcroft_latham.critical"),
+            std::string::npos);
+}
+
 }  // namespace
