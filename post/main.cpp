@@ -232,7 +232,13 @@ int run(int argc, char** argv) {
     if (fs::exists(first) && !rk::H5File(first, rk::H5File::Mode::read).exists(rk::result_frame_group(0) + rk::kThermalFields[1].name))
       thermal = 1;
   }
-  const std::vector<Field> fields = select_fields(field_list, thermal, solved && scene.damage.on());
+  // the damage fields where the frames hold them (a `damage` section, in the scene or set at rksolve)
+  bool damage = false;
+  if (solved) {
+    const std::string first = rk::result_frame_path(case_dir, 0, 0);
+    damage = fs::exists(first) && rk::H5File(first, rk::H5File::Mode::read).exists(rk::result_frame_group(0) + rk::kDamageFields[0].name);
+  }
+  const std::vector<Field> fields = select_fields(field_list, thermal, damage);
   const std::vector<int> chosen = select_frames(frame_list, solved ? int(frames) : 1);
   const auto [cells, cell_rank] = read_cells(case_dir, ranks, scene.prep_hash);
   std::vector<rk::PvdEntry> index;

@@ -691,6 +691,14 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     Section o = top.section("output");
     s.output.checkpoint_steps = o.integer("checkpoint_steps", int(s.output.checkpoint_steps), 0, 1000000000);
     s.output.checkpoint_minutes = o.number("checkpoint_minutes", s.output.checkpoint_minutes, {0, 1e6});
+    o.list("track", [&](Section& p) {
+      Scene::Output::Track t;
+      t.name = p.text("name", "p" + std::to_string(s.output.track.size()));
+      for (const auto& other : s.output.track)
+        if (other.name == t.name) throw Error(name + ": key 'output.track': two tracks named '" + t.name + "'");
+      t.point = p.vec3("point", std::nullopt);
+      s.output.track.push_back(t);
+    });
     o.done();
   }
   {

@@ -218,6 +218,13 @@ struct Scene {
   struct Output {
     std::int64_t checkpoint_steps = 5000;  // steps between checkpoints (0: only at the end)
     double checkpoint_minutes = 0;         // wall-clock minutes between checkpoints (0: off)
+    // material points followed in CASE/tracks.csv (solver/io/point_tracks.hpp): the particle nearest
+    // each point at t = 0
+    struct Track {
+      std::string name;
+      Vec3 point{};
+    };
+    std::vector<Track> track;
   } output;
 
   // The bounds' reasons (docs/scene.md): 0.05 lies above the method's error on the shipped scenes

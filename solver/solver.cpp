@@ -17,6 +17,7 @@
 #include "health.hpp"
 #include "io/checkpoint.hpp"
 #include "io/history.hpp"
+#include "io/point_tracks.hpp"
 #include "io/output.hpp"
 #include "io/progress.hpp"
 #include "io/run_report.hpp"
@@ -90,6 +91,7 @@ class Simulation {
   std::unique_ptr<HeatTransfer> heat_;  // with conduction only
   std::unique_ptr<ResultWriter> results_;
   std::unique_ptr<History> history_;
+  std::unique_ptr<PointTracks> tracks_;
   std::unique_ptr<HealthChecks> health_;
   std::unique_ptr<Progress> progress_;
   std::optional<OverlapExchange> exchange_;
@@ -293,6 +295,7 @@ bool Simulation::history_due(bool last) const {
 
 void Simulation::history(double dt, bool last) {
   const HistoryRow row = history_->record(md_, st_, *dies_, *ebc_, v_old_, dt, clock_.kinetic0, comm_);
+  tracks_->record(md_, st_, comm_);
   const double t_end = scene_.time.end;
   max_ebc_error_ = std::max(max_ebc_error_, row.ebc_error);
   clock_.last_error = row.energy_error;
@@ -410,6 +413,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     if (!opt.restart) heat_->start(md_, st_, *dies_, comm);
   }
   history_ = std::make_unique<History>(opt.case_dir, scene_, md_, opt.restart ? st_.t : -1.0, comm);
+  tracks_ = collectively(comm, [&] { return std::make_unique<PointTracks>(opt.case_dir, scene_, md_, opt.restart ? st_.t : -1.0, comm); });
 
   HealthScales scales;
   scales.dt0 = dt0;

@@ -33,6 +33,7 @@ HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::str
     while (std::getline(in, line))
       if (std::strtod(line.c_str(), nullptr) < resume_time) keep.push_back(line);
   }
+  path_ = path;
   file_ = std::fopen(path.c_str(), "w");
   if (!file_) throw Error(path + ": cannot write the history file");
   for (std::size_t k = 0; k < columns.size(); ++k) std::fprintf(file_, "%s%s", k ? "," : "", columns[k].c_str());
@@ -47,7 +48,7 @@ HistoryWriter::~HistoryWriter() {
 void HistoryWriter::write(const std::vector<double>& values) {
   for (std::size_t k = 0; k < values.size(); ++k) std::fprintf(file_, "%s%.10g", k ? "," : "", values[k]);
   std::fprintf(file_, "\n");
-  if (std::fflush(file_) != 0 || std::ferror(file_)) throw Error("history.csv: write failed (disk full?)");
+  if (std::fflush(file_) != 0 || std::ferror(file_)) throw Error(path_ + ": write failed (disk full?)");
 }
 
 History::History(const std::string& case_dir, const Scene& scene, const Model& md, double resume_time, const Comm& comm)

@@ -27,6 +27,7 @@ class HistoryWriter {  // rank 0 only: one header row, then one row of numbers p
 
  private:
   std::FILE* file_ = nullptr;
+  std::string path_;
 };
 
 // The global sums of one row that are not per wall, die or face (they travel first in the reduction).

@@ -23,14 +23,6 @@ namespace {
 constexpr int kBase = 10, kThermal = 3, kDamage = 2, kProjected = kBase + kThermal + kDamage;
 constexpr int kStress = 4;  // the first stress component's column
 
-// Cauchy von Mises stress and pressure of a point from its Kirchhoff stress (sigma = tau / J).
-void cauchy_measures(const double* tau, double J, double& von_mises, double& pressure) {
-  const double p = (tau[0] + tau[1] + tau[2]) / 3;
-  const double s[6] = {tau[0] - p, tau[1] - p, tau[2] - p, tau[3], tau[4], tau[5]};
-  const double q2 = 1.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
-  von_mises = std::sqrt(q2) / J;
-  pressure = -p / J;
-}
 
 // The temperature column's value at a point: its temperature; with conduction (the particles carry
 // the field T^h) only its plastic heating since the last thermal update.
@@ -40,6 +32,14 @@ double point_heat(const State& st, std::size_t g) {
 }
 
 }  // namespace
+
+void cauchy_measures(const double* tau, double J, double& von_mises, double& pressure) {
+  const double p = (tau[0] + tau[1] + tau[2]) / 3;
+  const double s[6] = {tau[0] - p, tau[1] - p, tau[2] - p, tau[3], tau[4], tau[5]};
+  const double q2 = 1.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
+  von_mises = std::sqrt(q2) / J;
+  pressure = -p / J;
+}
 
 ResultWriter::ResultWriter(const std::string& case_dir, const Model& md, const std::string& scene_hash,
                            std::int64_t resume_frames)

@@ -13,6 +13,9 @@
 
 namespace rk {
 
+// Cauchy von Mises stress and pressure of a point from its Kirchhoff stress (sigma = tau / J).
+void cauchy_measures(const double* tau, double J, double& von_mises, double& pressure);
+
 // The frame's files and layout: shared/result_frame.hpp.
 class ResultWriter {
  public:

@@ -3,7 +3,9 @@ radius exceeds the radius at the die), the press needs more force than without f
 energy identity holds: press work = plastic + elastic (+ penalty) + kinetic + friction work, 1 %; the
 normalized Cockcroft-Latham damage is largest on the barrel's free surface at mid-height, where upset
 cylinders crack (Kudo & Aoi, J. Japan Soc. Tech. Plasticity 8 (1967) 17), and there several times
-what homogeneous compression's stress scatter gives (tests/pipeline/upsetting.py)."""
+what homogeneous compression's stress scatter gives (tests/pipeline/upsetting.py); tracks.csv follows
+the scene's two material points (output.track: the centre and the equator's surface point) with the
+values the frames show at the same particles, the equator moving out with the barrel."""
 import csv
 
 import meshio
@@ -39,5 +41,22 @@ rkcase.check(r[i] > r.max() - 0.3e-3 and x[i, 2] < 0.3e-3,
              f"{1e3 * r.max():.2f} mm, z {1e3 * x[i, 2]:.2f} mm")
 # measured 2026-12-02: 0.13 of the strain there (frictionless upsetting's scatter: 0.046 of it)
 rkcase.check(cl[i] > 0.09 * ep[i], f"there {cl[i] / ep[i]:.3f} of the plastic strain {ep[i]:.3f}")
+tracked = list(csv.DictReader(open(case / "tracks.csv")))
+X = frame.points - frame.point_data["displacement"]
+for name, point in (("centre", (0, 0, 0)), ("equator", (0.01, 0, 0))):
+    j = int(np.argmin(((X - np.array(point)) ** 2).sum(axis=1)))
+    row = tracked[-1]
+    # measured 2026-12-02: equal to the printed 10 digits (the frames' fixed-point and the tracks'
+    # double sums of the same average)
+    same = all(abs(float(row[f"{name}.{c}"]) - frame.points[j, i]) <= 1e-9 * 0.01 for i, c in enumerate("xyz")) and \
+        abs(float(row[f"{name}.eq_plastic_strain"]) / ep[j] - 1) < 1e-8 and abs(float(row[f"{name}.damage_cockcroft_latham"]) / cl[j] - 1) < 1e-8
+    rkcase.check(same and len(tracked) == len(list(csv.DictReader(open(case / "history.csv")))),
+                 f"tracks.csv: {name} at {[round(1e3 * float(row[f'{name}.{c}']), 4) for c in 'xyz']} mm, strain "
+                 f"{float(row[f'{name}.eq_plastic_strain']):.4f}, as the frame shows it, a row per history row")
+rkcase.check(abs(float(tracked[-1]["equator.x"]) - mid) < 0.05e-3 and abs(float(tracked[-1]["centre.x"])) < 1e-6,
+             f"the equator moved out to the barrel's {1e3 * mid:.2f} mm, the centre stayed")
 rkcase.check(float(last["damage_cockcroft_latham_max"]) >= cl.max() and float(last["damage_brozzo_max"]) > 0,
              f"history: largest Cockcroft-Latham {last['damage_cockcroft_latham_max']}, Brozzo {last['damage_brozzo_max']}")
+out = tools.run([tools.bin / "rksolve", case, "--set", "output.track[1].point=[1, 0, 0]"], expect_ok=False)
+rkcase.check(out.returncode != 0 and "output.track 'equator': no particle within a spacing of its point" in out.stderr,
+             f"a track outside the part is refused: {out.stderr.strip()[:160]}")

@@ -1,0 +1,95 @@
+#include "io/point_tracks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "io/output.hpp"
+#include "rk/kinematics.hpp"
+
+namespace rk {
+
+PointTracks::PointTracks(const std::string& case_dir, const Scene& scene, const Model& md, double resume_time,
+                         const Comm& comm) {
+  const auto& tracks = scene.output.track;
+  if (tracks.empty()) return;
+  const bool thermal = scene.material.thermal(), damage = scene.damage.on();
+  values_ = 6 + (thermal ? 1 : 0) + (damage ? 2 : 0);
+  for (const auto& t : tracks) {
+    // the nearest owned particle at t = 0, then the lowest global id among the equally near
+    double best = std::numeric_limits<double>::infinity(), id = best, spacing = 0;
+    for (std::size_t I = 0; I < md.n; ++I) {
+      if (!md.owned[I]) continue;
+      double d2 = 0;
+      for (int i = 0; i < 3; ++i) d2 += (md.X[3 * I + i] - t.point[i]) * (md.X[3 * I + i] - t.point[i]);
+      if (d2 < best || (d2 == best && double(md.global_id[I]) < id)) best = d2, id = double(md.global_id[I]), spacing = md.spacing0[I];
+    }
+    double nearest = best;
+    comm.min(&nearest, 1);
+    double mine[2] = {best == nearest ? id : std::numeric_limits<double>::infinity(), 0};
+    comm.min(mine, 1);
+    double h[1] = {best == nearest && id == mine[0] ? spacing : 0};
+    comm.max(h, 1);
+    comm.check(std::sqrt(nearest) <= h[0], "output.track '" + t.name + "': no particle within a spacing of its point (" +
+                                               std::to_string(t.point[0]) + ", " + std::to_string(t.point[1]) + ", " +
+                                               std::to_string(t.point[2]) + ") m: outside the part?");
+    ids_.push_back(mine[0]);
+  }
+  sums_.assign(tracks.size() * std::size_t(values_ + 1), 0.0);
+  row_.assign(1 + tracks.size() * std::size_t(values_), 0.0);
+  std::vector<std::string> columns{"time"};
+  for (const auto& t : tracks) {
+    for (const char* q : {".x", ".y", ".z", ".eq_plastic_strain", ".von_mises", ".pressure"}) columns.push_back(t.name + q);
+    if (thermal) columns.push_back(t.name + ".temperature");
+    if (damage)
+      for (const char* q : {".damage_cockcroft_latham", ".damage_brozzo"}) columns.push_back(t.name + q);
+  }
+  writer_ = collectively(comm, [&] {
+    return comm.rank() == 0 ? std::make_unique<HistoryWriter>(case_dir + "/tracks.csv", columns, resume_time) : nullptr;
+  });
+}
+
+void PointTracks::map_locals(const Model& md) {
+  track_of_.assign(md.n, -1);
+  for (std::size_t I = 0; I < md.n; ++I)
+    for (std::size_t k = 0; k < ids_.size(); ++k)
+      if (double(md.global_id[I]) == ids_[k]) track_of_[I] = int(k);
+}
+
+void PointTracks::record(const Model& md, const State& st, const Comm& comm) {
+  if (ids_.empty()) return;
+  map_locals(md);  // the local numbering changes at a reference update
+  const std::size_t stride = std::size_t(values_) + 1;  // the positive weights' sum, then the values
+  std::fill(sums_.begin(), sums_.end(), 0.0);
+  for (std::size_t I = 0; I < md.n; ++I) {  // the position, from the owner
+    if (track_of_[I] < 0 || !md.owned[I]) continue;
+    double x[3];
+    material_position(md, st, I, x);
+    for (int i = 0; i < 3; ++i) sums_[stride * std::size_t(track_of_[I]) + 1 + std::size_t(i)] = x[i];
+  }
+  for (std::size_t g = 0; g < md.m; ++g)  // every point once, on its rank
+    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
+      const int t = track_of_[std::size_t(md.nbr[k])];
+      if (t < 0) continue;
+      const double a = md.weight[g] * std::max(md.N[std::size_t(k)], 0.0);
+      double vm, p;
+      cauchy_measures(&st.tau[6 * g], st.total_J(g), vm, p);
+      double* s = &sums_[stride * std::size_t(t)];
+      s[0] += a;
+      s[4] += a * st.ep[g], s[5] += a * vm, s[6] += a * p;
+      int c = 7;
+      if (!st.temperature.empty()) s[c++] += a * st.temperature[g];
+      if (!st.damage.empty()) s[c] += a * st.damage[2 * g], s[c + 1] += a * st.damage[2 * g + 1];
+    }
+  comm.sum(sums_.data(), int(sums_.size()));
+  row_[0] = st.t;
+  for (std::size_t t = 0; t < ids_.size(); ++t) {
+    const double* s = &sums_[stride * t];
+    double* r = &row_[1 + std::size_t(values_) * t];
+    for (int i = 0; i < 3; ++i) r[i] = s[1 + i];
+    for (int c = 3; c < values_; ++c) r[c] = s[0] > 0 ? s[1 + c] / s[0] : 0.0;
+  }
+  collectively(comm, [&] { return writer_ ? (writer_->write(row_), 0) : 0; });  // a full disk stops all ranks
+}
+
+}  // namespace rk

@@ -1,0 +1,39 @@
+// CASE/tracks.csv: the history of chosen material points (output.track), one row per history row:
+// time, then per track NAME its current position NAME.x, .y, .z (the material's, X + u^h(X)) and its
+// NAME.eq_plastic_strain, .von_mises, .pressure, with a temperature .temperature, with damage
+// .damage_cockcroft_latham and .damage_brozzo: the values of the particle nearest the track's point
+// at t = 0 (the lowest global id among equals), its point quantities averaged over the points whose
+// supports hold it as the frames average them (docs/outputs.md). A track more than a spacing from
+// every particle is refused by name. Rank 0 writes; a restart keeps the rows before it.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "io/history.hpp"
+#include "model.hpp"
+#include "parallel/comm.hpp"
+#include "scene.hpp"
+#include "state.hpp"
+
+namespace rk {
+
+class PointTracks {
+ public:
+  // Collective; throws rk::Error naming a track outside the part.
+  PointTracks(const std::string& case_dir, const Scene& scene, const Model& md, double resume_time, const Comm& comm);
+  // One row at t^n. Collective.
+  void record(const Model& md, const State& st, const Comm& comm);
+  bool empty() const { return ids_.empty(); }
+
+ private:
+  std::vector<double> ids_;        // per track: the global id of its particle
+  std::vector<int> track_of_;      // per local particle: its track, -1 for none (rebuilt on a new reference)
+  std::size_t local_count_ = 0;    // md.n when track_of_ was built
+  int values_ = 0;                 // per track: x, y, z, eq_plastic_strain, von_mises, pressure [, T] [, 2 damage]
+  std::vector<double> sums_, row_;
+  std::unique_ptr<HistoryWriter> writer_;
+  void map_locals(const Model& md);
+};
+
+}  // namespace rk
