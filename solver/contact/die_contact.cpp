@@ -80,7 +80,17 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
         face_mass_[f] += md.mass[I] / double(count[I]);
       }
     face_active_.reserve(faces);
+    face_N_sum_.assign(faces, 0.0);
+    for (std::size_t f = 0; f < faces; ++f)
+      for (auto k = md.surface_face_offsets[f]; k < md.surface_face_offsets[f + 1]; ++k) {
+        const auto I = std::size_t(md.surface_face_nodes[std::size_t(k)]);
+        double sum = 0;
+        for (auto j = md.material_offsets[I]; j < md.material_offsets[I + 1]; ++j) sum += std::abs(md.material_N[std::size_t(j)]);
+        face_N_sum_[f] = std::max(face_N_sum_[f], sum);
+      }
+    face_clearance_.assign(faces * dies_.size(), 0.0);  // 0: looked up at the first step
   }
+  die_moved_.assign(dies_.size(), 0.0);
   for (const auto& sf : surfaces_) {
     double b[6] = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
     for (std::size_t v = 0; v < sf.vertices.size() / 3; ++v)
@@ -126,6 +136,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     moved = std::sqrt(worst);
   }
   u_last_ = st.u;  // sized at the first call
+  moved_ = moved;
   deepest_ = -1;
   const std::size_t slaves = particles_.size() + md.m;
   double largest = 0;
@@ -140,7 +151,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     const DieMotion* mo = die ? &dies_[k].motion : nullptr;
     const double stroke = die ? mo->stroke(t) : 0.0, rate = die ? mo->rate(t) : 0.0;
     const double die_moved = die ? std::abs(stroke - stroke_last_[k]) : 0.0;
-    if (die) stroke_last_[k] = stroke;
+    if (die) stroke_last_[k] = stroke, die_moved_[k] = die_moved;
     // Coulomb at the slaves; with a shear factor the faces take the friction (face_friction)
     const double mu = die && !(dies_[k].shear_factor > 0) ? dies_[k].friction : 0.0;
     const double margin = margin_;
@@ -213,9 +224,13 @@ void DieContact::face_friction(const Model& md, const State& st, double t, doubl
     for (std::size_t k = 0; k < dies_.size(); ++k) {
       const Die& die = dies_[k];
       if (!(die.shear_factor > 0)) continue;
-      const double rate = die.motion.rate(t);
+      const double rate = die.motion.rate(t), touch = kFaceTouch * std::sqrt(area);
+      double& clear = face_clearance_[k * faces + f];
+      clear -= face_N_sum_[f] * moved_ + die_moved_[k];
+      if (clear > touch) continue;  // still farther than its touch distance: no lookup
       const DieHit hit = die_hit(k, centre, t);
-      if (!hit.found || hit.gap >= kFaceTouch * std::sqrt(area)) continue;
+      clear = hit.found ? std::max(hit.gap, 0.0) : margin_;
+      if (!hit.found || hit.gap >= touch) continue;
       // the flow stress and the pressure on the face of its cell's points (Cauchy stress tau / J)
       const auto c = std::size_t(md.surface_face_cell[f]);
       const auto g0 = std::size_t(md.cell_points[c]), g1 = std::size_t(md.cell_points[c + 1]);

@@ -123,6 +123,13 @@ class DieContact {
   void face_friction(const Model& md, const State& st, double t, double dt, double& largest);
   void face_velocity(const Model& md, const std::vector<double>& v, std::size_t f, double out[3]) const;
   std::vector<double> face_mass_;  // per boundary face: sum over its nodes of m_I / (the node's face count)
+  // per boundary face: the largest sum_J |N_J| of its nodes' rows (its centre moves at most that times
+  // the largest coefficient's move); per die and face: a lower bound on the centre's distance to the
+  // die (its gap at the last lookup, less what both may have moved since): a face farther than its
+  // touch distance is not looked up
+  std::vector<double> face_N_sum_, face_clearance_;
+  double moved_ = 0;                // the largest coefficient move of this step's compute
+  std::vector<double> die_moved_;   // per die: its stroke's change in this step's compute
   std::vector<FaceFriction> face_active_;  // reserved once
   bool shear_ = false;                     // a die has shear_factor > 0
   std::vector<DieTotals> totals_;
