@@ -72,9 +72,7 @@ void check_pressure(const Model& md, const PressureBound& b, double floor, doubl
   if (b.ratio > 0 && !(r <= b.ratio) && h.ok) h.ok = false, h.point = g, h.pressure_stop = true;
 }
 
-// The most points one group holds: a hexahedron at gauss_order 3 (27), or a batch of kLanes.
-constexpr std::size_t kMaxCellPoints = 32;
-static_assert(kMaxCellPoints >= 27 && kMaxCellPoints >= std::size_t(kLanes));
+static_assert(kMaxCellPoints >= std::size_t(kLanes));
 
 // The damage criteria over the points g0 .. g1 of one cell (or batch), at the stress the force uses:
 // with F-bar the point's deviator and the cell's pressure (Kirchhoff, pc per unit J), which is free of

@@ -16,6 +16,10 @@ namespace rk {
 // The material's volume ratio J below which (or above whose inverse) the state is not physical.
 inline constexpr double kMinVolumeRatio = 0.5;
 
+// The most points an F-bar cell may hold where damage is integrated (a hexahedron at gauss_order 3
+// holds 27): the damage keeps a cell's plastic strain increments on the stack.
+inline constexpr std::size_t kMaxCellPoints = 32;
+
 // The pressure's health bound. No metal under an impact at speed v or a tool pressing it carries a
 // pressure many times p_ref = rho0 c_L v + sigma_y(ep): the acoustic (shock) pressure of the impact
 // plus the flow stress a tool's constraint multiplies. `impact` is rho0 c_L v of the run's fastest
