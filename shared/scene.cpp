@@ -295,7 +295,7 @@ DieMotion read_motion(Section& owner) {
   DieMotion motion;
   Section m = owner.section("motion", true);
   motion.direction = m.vec3("direction", std::nullopt, true);
-  motion.curve = m.pairs("curve", "[time, stroke]", "the times");
+  motion.curve = PiecewiseLinear(m.pairs("curve", "[time, stroke]", "the times"));
   if (m.get("crank", false)) {  // a mechanical press
     if (!motion.curve.empty()) throw Error(m.where_of("crank") + " and 'curve' exclude each other");
     motion.speed = m.number("speed", 0.0, {0, 0});
@@ -487,7 +487,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
           throw Error(at + ": temperatures must be positive (kelvin), each " + what + " in (0, " + std::to_string(long(most)) + "]");
       if (!points.empty() && plain && m.get(plain, false))
         throw Error(at + " and 'material." + plain + "' exclude each other");
-      return TemperatureTable(points);
+      return PiecewiseLinear(points);
     };
     o.specific_heat_table = table("specific_heat_table", "specific heat J/(kg K)", 1e5, "specific_heat");
     o.specific_heat = o.specific_heat_table.empty()
@@ -743,7 +743,7 @@ std::vector<std::string> temperature_warnings(const Scene& s) {
     }
   };
   // the part's temperatures beyond a property table, whose end values are then held
-  const std::pair<const char*, const TemperatureTable*> tables[] = {{"specific_heat_table", &s.material.specific_heat_table},
+  const std::pair<const char*, const PiecewiseLinear*> tables[] = {{"specific_heat_table", &s.material.specific_heat_table},
                                                                     {"conductivity_table", &s.material.conductivity_table},
                                                                     {"density_table", &s.material.density_table}};
   auto covered = [&](const std::string& key, double T) {
@@ -777,47 +777,32 @@ std::vector<std::string> temperature_warnings(const Scene& s) {
   return out;
 }
 
-double DieMotion::Crank::angle(double t) const { return start_angle + 2 * M_PI * strokes_per_minute / 60 * t; }
-
 double DieMotion::Crank::position(double theta) const {
   const double lambda = radius / rod, s = std::sin(theta);
   return radius * (1 - std::cos(theta)) + rod * (1 - std::sqrt(1 - lambda * lambda * s * s));
 }
 
-double DieMotion::Crank::bottom_dead_centre() const { return (M_PI - start_angle) / (2 * M_PI * strokes_per_minute / 60); }
+double DieMotion::Crank::bottom_dead_centre() const { return (M_PI - start_angle) / omega(); }
 
 double DieMotion::fastest() const {
   double v = std::abs(speed);
-  for (std::size_t k = 1; k < curve.size(); ++k) v = std::max(v, std::abs(rate(curve[k - 1].first)));
+  for (const auto& [t, s] : curve.points()) v = std::max(v, std::abs(rate(t)));
   if (cranked())  // |ds/dtheta| <= r (1 + r / l) (the rod's term at most r/l of the crank's); times omega
-    v = std::max(v, crank.radius * (1 + crank.radius / crank.rod) * 2 * M_PI * crank.strokes_per_minute / 60);
+    v = std::max(v, crank.radius * (1 + crank.radius / crank.rod) * crank.omega());
   return v;
 }
 
 double DieMotion::stroke(double t) const {
   if (cranked()) return crank.position(crank.angle(t)) - crank.position(crank.start_angle);
-  if (curve.empty()) return speed * t;
-  if (t <= curve.front().first) return curve.front().second;
-  for (std::size_t k = 1; k < curve.size(); ++k)
-    if (t <= curve[k].first) {
-      const auto [t0, s0] = curve[k - 1];
-      const auto [t1, s1] = curve[k];
-      return s0 + (s1 - s0) * (t - t0) / (t1 - t0);
-    }
-  return curve.back().second;
+  return curve.empty() ? speed * t : curve.at(t);
 }
 
 double DieMotion::rate(double t) const {
   if (cranked()) {  // ds/dtheta dtheta/dt
     const double theta = crank.angle(t), lambda = crank.radius / crank.rod, s = std::sin(theta);
-    return crank.radius * s * (1 + lambda * std::cos(theta) / std::sqrt(1 - lambda * lambda * s * s)) * 2 * M_PI *
-           crank.strokes_per_minute / 60;
+    return crank.radius * s * (1 + lambda * std::cos(theta) / std::sqrt(1 - lambda * lambda * s * s)) * crank.omega();
   }
-  if (curve.empty()) return speed;
-  for (std::size_t k = 1; k < curve.size(); ++k)
-    if (t < curve[k].first && t >= curve[k - 1].first)
-      return (curve[k].second - curve[k - 1].second) / (curve[k].first - curve[k - 1].first);
-  return 0.0;
+  return curve.empty() ? speed : curve.slope_after(t);
 }
 
 }  // namespace rk

@@ -10,7 +10,7 @@
 
 
 #include "flow_table.hpp"
-#include "temperature_table.hpp"
+#include "piecewise_linear.hpp"
 #include "vec3.hpp"
 
 namespace rk {
@@ -30,13 +30,14 @@ struct RigidWall {
 struct DieMotion {
   Vec3 direction{};                               // unit: the pressing direction (stroke is along it)
   double speed = 0;                               // m/s, constant (when `curve` is empty)
-  std::vector<std::pair<double, double>> curve;   // (time s, stroke m), piecewise linear
+  PiecewiseLinear curve;                          // (time s, stroke m), or empty
   // a mechanical (crank) press: the slider-crank law s(theta) = r (1 - cos theta) + l (1 - sqrt(1 -
   // (r/l)^2 sin^2 theta)) below top dead centre, theta = start_angle + 2 pi n t / 60; the stroke is
   // s(theta(t)) - s(start_angle), so the die starts where the scene's CAD puts it
   struct Crank {
     double radius = 0, rod = 0, strokes_per_minute = 0, start_angle = 0;  // m, m, 1/min, rad from top dead centre
-    double angle(double t) const;
+    double omega() const { return 2 * M_PI * strokes_per_minute / 60; }  // rad/s
+    double angle(double t) const { return start_angle + omega() * t; }
     double position(double theta) const;  // s(theta)
     double bottom_dead_centre() const;    // the time theta reaches pi
   } crank;
@@ -99,12 +100,12 @@ struct Material {
   double specific_heat = 0;      // J/(kg K); 0: no temperature
   double taylor_quinney = 0.9;   // the share of plastic work that becomes heat
   double conductivity = 0;       // W/(m K)
-  TemperatureTable conductivity_table;    // k(T) instead (W/(m K))
-  TemperatureTable specific_heat_table;   // c(T) instead (J/(kg K)): the enthalpy its integral
+  PiecewiseLinear conductivity_table;    // k(T) instead (W/(m K))
+  PiecewiseLinear specific_heat_table;   // c(T) instead (J/(kg K)): the enthalpy its integral
   double conductivity_at(double T) const { return conductivity_table.empty() ? conductivity : conductivity_table.at(T); }
   double thermal_expansion = 0;  // 1/K, linear
   // rho(T) instead: the stress-free stretch is (rho(T0) / rho(T))^(1/3), and `density` is rho(T0)
-  TemperatureTable density_table;
+  PiecewiseLinear density_table;
   bool thermal() const { return specific_heat > 0; }
   bool conducting() const { return conductivity > 0; }
 };

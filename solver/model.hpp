@@ -79,7 +79,7 @@ struct Model {
   // heat_capacity is rho0 c at the table's first point and capacity_at / enthalpy / temperature_of
   // follow the table (the enthalpy per reference volume rho0 h(T), h = int_0^T c).
   double heat_capacity = 0, taylor_quinney = 0;
-  TemperatureTable specific_heat_table;
+  PiecewiseLinear specific_heat_table;
   double mass_density = 0;  // rho0, not mass-scaled
   bool tabled_heat() const { return !specific_heat_table.empty(); }
   double capacity_at(double T) const { return tabled_heat() ? mass_density * specific_heat_table.at(T) : heat_capacity; }
@@ -91,7 +91,7 @@ struct Model {
   // 1 + alpha (T - T0), or (rho(T0) / rho(T))^(1/3) from a density table. A region that starts at
   // another temperature starts with its thermal strain, as a part heated locally from a uniform state.
   double thermal_expansion = 0, initial_temperature = 0;
-  TemperatureTable density_table;
+  PiecewiseLinear density_table;
   bool thermal_strain() const { return thermal_expansion > 0 || !density_table.empty(); }
   double thermal_stretch(double T) const {
     return density_table.empty() ? 1 + thermal_expansion * (T - initial_temperature)

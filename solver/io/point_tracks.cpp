@@ -26,14 +26,14 @@ PointTracks::PointTracks(const std::string& case_dir, const Scene& scene, const 
     }
     double nearest = best;
     comm.min(&nearest, 1);
-    double mine[2] = {best == nearest ? id : std::numeric_limits<double>::infinity(), 0};
-    comm.min(mine, 1);
-    double h[1] = {best == nearest && id == mine[0] ? spacing : 0};
-    comm.max(h, 1);
-    comm.check(std::sqrt(nearest) <= h[0], "output.track '" + t.name + "': no particle within a spacing of its point (" +
+    double chosen = best == nearest ? id : std::numeric_limits<double>::infinity();
+    comm.min(&chosen, 1);
+    double h = best == nearest && id == chosen ? spacing : 0;  // the chosen particle's spacing
+    comm.max(&h, 1);
+    comm.check(std::sqrt(nearest) <= h, "output.track '" + t.name + "': no particle within a spacing of its point (" +
                                                std::to_string(t.point[0]) + ", " + std::to_string(t.point[1]) + ", " +
                                                std::to_string(t.point[2]) + ") m: outside the part?");
-    ids_.push_back(mine[0]);
+    ids_.push_back(chosen);
   }
   sums_.assign(tracks.size() * std::size_t(values_ + 1), 0.0);
   row_.assign(1 + tracks.size() * std::size_t(values_), 0.0);

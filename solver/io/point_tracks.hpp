@@ -24,12 +24,11 @@ class PointTracks {
   PointTracks(const std::string& case_dir, const Scene& scene, const Model& md, double resume_time, const Comm& comm);
   // One row at t^n. Collective.
   void record(const Model& md, const State& st, const Comm& comm);
-  bool empty() const { return ids_.empty(); }
 
  private:
   std::vector<double> ids_;        // per track: the global id of its particle
-  std::vector<int> track_of_;      // per local particle: its track, -1 for none (rebuilt on a new reference)
-  std::size_t local_count_ = 0;    // md.n when track_of_ was built
+  std::vector<int> track_of_;      // per local particle: its track, -1 for none (rebuilt at each row:
+                                   // a reference update renumbers the local particles)
   int values_ = 0;                 // per track: x, y, z, eq_plastic_strain, von_mises, pressure [, T] [, 2 damage]
   std::vector<double> sums_, row_;
   std::unique_ptr<HistoryWriter> writer_;

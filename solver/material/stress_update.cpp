@@ -9,15 +9,16 @@
 namespace rk {
 namespace {
 
-// The points g .. g+n of one cell, kLanes at a time (the rest of the lanes at rest).
-void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n, J2Batch& b) {
+// The points g .. g+n of one cell, kLanes at a time (the rest of the lanes at rest); with a thermal
+// strain their stress-free stretches into `stretch`.
+void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n, J2Batch& b, Lane& stretch) {
   Lane r = splat(1);  // Jbar / J
   for (int l = 0; l < n && md.fbar; ++l) r[l] = st.cell_J[c] / st.J[g + l];
   Lane ratio = cube_root_near_one(r);
   // the thermal stretch taken out: F_mech = F / stretch(T) (1 + alpha (T - T0), or from rho(T)). C_p^-1 is
   // pushed forward at a reference update with the whole F, so the total stretch is right here.
   if (md.thermal_strain())
-    for (int l = 0; l < n; ++l) ratio[l] /= md.thermal_stretch(st.temperature[g + l]);
+    for (int l = 0; l < n; ++l) stretch[l] = md.thermal_stretch(st.temperature[g + l]), ratio[l] /= stretch[l];
   for (int l = 0; l < kLanes; ++l) {
     if (l >= n) {
       b.at_rest(l);
@@ -114,7 +115,8 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
     double increment[kMaxCellPoints];  // the points' plastic strain increments (for the damage)
     for (auto g = g0; g < g1; g += kLanes) {
       const int n = int(std::min<std::size_t>(kLanes, g1 - g));
-      load(md, st, c, g, n, b);
+      Lane stretch;
+      load(md, st, c, g, n, b, stretch);
       j2_update(md.material, b);
       for (int l = 0; l < n; ++l) {
         const std::size_t p = g + l;
@@ -127,10 +129,9 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
         st.psi[p] = b.psi[l];
         st.wp[p] += b.dissipation[l];
         if (!st.stretch_last.empty()) {  // the stress's work on the thermal strain over the step (trapezoid)
-          const double s = md.thermal_stretch(st.temperature[p]);
           if (st.stretch_last[p] > 0)
-            thermal_work += md.weight[p] * 0.5 * (trace_before + t[0] + t[1] + t[2]) * std::log(s / st.stretch_last[p]);
-          st.stretch_last[p] = s;
+            thermal_work += md.weight[p] * 0.5 * (trace_before + t[0] + t[1] + t[2]) * std::log(stretch[l] / st.stretch_last[p]);
+          st.stretch_last[p] = stretch[l];
         }
         // the plastic work's heat, at once at the point (spread by conduction at the next thermal update)
         if (!st.temperature.empty() && b.dissipation[l] != 0) {

@@ -20,7 +20,7 @@ TEST(PressureBound, FastestStartOrTool) {
   s.initial.velocity_gradient[5] = -5;  // v_y -= 5 1/s z: -1 m/s at z = 0.2, the fastest corner
   EXPECT_NEAR(rk::fastest_speed(s, kLo, kHi), 1.0, 1e-12);
   rk::Die die;
-  die.motion.curve = {{0, 0}, {1e-3, 2e-3}, {2e-3, 2.5e-3}};  // 2 m/s, then 0.5 m/s
+  die.motion.curve = rk::PiecewiseLinear({{0, 0}, {1e-3, 2e-3}, {2e-3, 2.5e-3}});  // 2 m/s, then 0.5 m/s
   s.dies.push_back(die);
   EXPECT_NEAR(rk::fastest_speed(s, kLo, kHi), 2.0, 1e-12);
   rk::EssentialFace face;

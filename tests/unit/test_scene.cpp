@@ -254,7 +254,7 @@ TEST(Scene, SpecificHeatAndDensityTables) {
               "  specific_heat_table: [[290, 450], [1000, 700], [1500, 650]]\n  density_table: [[290, 9100], [1500, 8900]]\n");
   const rk::Scene s = rk::load_scene(write_scene(text));
   ASSERT_TRUE(s.material.thermal());
-  const rk::TemperatureTable& c = s.material.specific_heat_table;
+  const rk::PiecewiseLinear& c = s.material.specific_heat_table;
   EXPECT_EQ(s.material.specific_heat, 450);  // temperature on
   EXPECT_DOUBLE_EQ(c.integral(200), 200 * 450.0);
   // 290 * 450 + the trapezoid to 800 K (c from 450 to 450 + 250 * 510 / 710)

@@ -1,8 +1,8 @@
-// A material property as a function of temperature (the scene's `material.*_table` keys): piecewise
-// linear through (T K, value) points with ascending T, held at the first value below the table and at
-// the last above it. For a specific heat table its integral from 0 K is the enthalpy per unit mass,
-// and the integral's inverse the temperature of an enthalpy (the values are positive, so the
-// integral rises strictly).
+// A function piecewise linear through (x, y) points with ascending x, held at the first y below them
+// and at the last above: a material property as a function of temperature (the scene's
+// `material.*_table` keys) or a die's stroke against time (`motion.curve`). For a specific heat
+// table its integral from x = 0 is the enthalpy per unit mass, and the integral's inverse the
+// temperature of an enthalpy (the values are positive, so the integral rises strictly).
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -11,11 +11,11 @@
 
 namespace rk {
 
-class TemperatureTable {
+class PiecewiseLinear {
  public:
-  TemperatureTable() = default;
-  // points: ascending temperatures (kelvin, > 0), positive values (the scene checks both)
-  explicit TemperatureTable(std::vector<std::pair<double, double>> points) : p_(std::move(points)) {
+  PiecewiseLinear() = default;
+  // points: ascending x (the scene checks); integral() and inverse_integral() ask x >= 0 and y > 0
+  explicit PiecewiseLinear(std::vector<std::pair<double, double>> points) : p_(std::move(points)) {
     if (p_.empty()) return;
     integral_.resize(p_.size());
     integral_[0] = p_[0].first * p_[0].second;  // the first value held from 0 K
@@ -33,6 +33,13 @@ class TemperatureTable {
     const auto& [T0, v0] = p_[k - 1];
     const auto& [T1, v1] = p_[k];
     return v0 + (v1 - v0) * (T - T0) / (T1 - T0);
+  }
+
+  // The slope of the segment [x_k-1, x_k) holding x; 0 outside the points.
+  double slope_after(double x) const {
+    for (std::size_t k = 1; k < p_.size(); ++k)
+      if (x < p_[k].first && x >= p_[k - 1].first) return (p_[k].second - p_[k - 1].second) / (p_[k].first - p_[k - 1].first);
+    return 0.0;
   }
 
   // The integral of the value from 0 K to T.
