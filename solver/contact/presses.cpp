@@ -79,9 +79,10 @@ void Presses::move(State& st, double dt) const {
     }
     s.stroke += dt * s.speed;
     if (ram.press.blows > 0 || s.stopped > 0) continue;
-    // a stalled hydraulic press: less than 1 % of a spacing in the time its speed moves it one
-    if ((t - s.since_t) * ram.nominal >= h_min_) {
-      if (std::abs(s.stroke - s.since_s) < 0.01 * h_min_) s.stopped = 1;
+    // a stalled hydraulic press: its mean speed under 1 % of its nominal one over the time that moves
+    // it a tenth of a spacing
+    if ((t - s.since_t) * ram.nominal >= 0.1 * h_min_) {
+      if (std::abs(s.stroke - s.since_s) < 1e-3 * h_min_) s.stopped = 1;
       s.since_t = t, s.since_s = s.stroke;
     }
   }

@@ -8,8 +8,8 @@
 //   (v^{n+1/2} <= 0: held at rest); the next blow starts from there at v0; after the last it stays.
 // - hydraulic: D = force_limit, v^{n+1/2} kept in [0, min(speed, power_limit / R^n)]: the nominal
 //   speed while the part needs less than the limit, slowed and stalled where it needs more. It stops
-//   at its `stroke`, or stalls: it moved less than 1 % of the smallest spacing in the time its
-//   nominal speed moves it one spacing.
+//   at its `stroke`, or stalls: its mean speed fell under 1 % of the nominal one over the time that
+//   speed takes for a tenth of the smallest spacing.
 // The run ends when every ram has stopped. R^n is summed over the ranks in fixed point
 // (DieContact::reaction), so the rams move bitwise alike on any rank count. The energy a ram
 // delivers, sum dt_avg R^n vbar, is for a blow exactly the kinetic energy it lost.
