@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -28,7 +29,10 @@ constexpr const auto& kFields = rk::kFrameFields;
 
 struct Frame {
   double time = 0;
-  std::vector<double> die_stroke;  // each die's, where the frame holds them (a press drives a die)
+  // with dies (frames before 2026-12-02 hold none): each die's stroke, and over all dies' triangles the
+  // loads summed over the ranks (normal force, tangential force x y z, N) and whether any rank's
+  // material has touched it
+  std::vector<double> die_stroke, die_load, die_touched;
   std::vector<std::int64_t> gid, rank;
   std::vector<double> x;
   std::vector<std::vector<double>> values;  // per selected field
@@ -45,6 +49,8 @@ Frame read_frame(const std::string& case_dir, int ranks, int f, const std::vecto
   Frame fr;
   fr.values.resize(fields.size());
   const std::string g = rk::result_frame_group(f);
+  std::vector<std::int64_t> die_sum;
+  double scale = 0;
   for (int r = 0; r < ranks; ++r) {
     const std::string path = rk::result_frame_path(case_dir, r, f);
     if (!fs::exists(path)) throw rk::Error(path + ": missing (the rank did not write this frame)");
@@ -58,7 +64,17 @@ Frame read_frame(const std::string& case_dir, int ranks, int f, const std::vecto
       throw ForeignFrame(path + ": computed on another scene's subdomains (scene hash " + hash + ", this case's " +
                          scene_hash + "): a result of an earlier case; re-run rksolve on this case");
     fr.time = h.read<double>(g + "time")[0];
-    if (h.exists(g + "die_stroke")) fr.die_stroke = h.read<double>(g + "die_stroke");
+    if (h.exists(g + rk::kDieStroke)) {  // the dies: the loads' fixed-point sums are exact over the ranks
+      fr.die_stroke = h.read<double>(g + rk::kDieStroke);
+      const auto load = h.read<std::int64_t>(g + rk::kDieLoad, 4);
+      const auto touched = h.read<std::int64_t>(g + rk::kDieTouched);
+      if (r == 0) die_sum.assign(load.size(), 0), fr.die_touched.assign(touched.size(), 0.0);
+      if (load.size() != die_sum.size() || touched.size() != fr.die_touched.size())
+        throw rk::Error(path + ": its die surfaces differ from rank 0's");
+      for (std::size_t k = 0; k < load.size(); ++k) die_sum[k] += load[k];
+      for (std::size_t k = 0; k < touched.size(); ++k) fr.die_touched[k] = std::max(fr.die_touched[k], double(touched[k]));
+      scale = h.read<double>(g + rk::kDieLoadScale)[0];  // the same on every rank
+    }
     auto gid = h.read<std::int64_t>(g + "global_id");
     fr.rank.insert(fr.rank.end(), gid.size(), std::int64_t(r));
     fr.gid.insert(fr.gid.end(), gid.begin(), gid.end());
@@ -69,7 +85,31 @@ Frame read_frame(const std::string& case_dir, int ranks, int f, const std::vecto
       fr.values[k].insert(fr.values[k].end(), v.begin(), v.end());
     }
   }
+  for (std::int64_t v : die_sum) fr.die_load.push_back(double(v) * scale);
   return fr;
+}
+
+// A die's cell data from a frame: the contact pressure and shear stress on each triangle (its loads
+// over its area, Pa) and whether the material has touched it so far (the die fill); none where the
+// frame holds no die datasets.
+std::vector<rk::VtuArray> die_fields(const rk::DieSurface& die, const Frame& fr, std::size_t first) {
+  const std::size_t n = die.triangles.size() / 3;
+  if (fr.die_touched.size() < first + n) return {};
+  rk::VtuArray pressure{"contact_pressure", 1, {}, {}}, shear{"contact_shear", 1, {}, {}}, touched{"touched", 1, {}, {}};
+  for (std::size_t t = 0; t < n; ++t) {
+    const double* a = &die.vertices[3 * std::size_t(die.triangles[3 * t])];
+    const double* b = &die.vertices[3 * std::size_t(die.triangles[3 * t + 1])];
+    const double* c = &die.vertices[3 * std::size_t(die.triangles[3 * t + 2])];
+    const double nx = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
+    const double ny = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
+    const double nz = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    const double area = 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
+    const double* f = &fr.die_load[4 * (first + t)];
+    pressure.f64.push_back(area > 0 ? f[0] / area : 0.0);
+    shear.f64.push_back(area > 0 ? std::sqrt(f[1] * f[1] + f[2] * f[2] + f[3] * f[3]) / area : 0.0);
+    touched.f64.push_back(fr.die_touched[first + t]);
+  }
+  return {pressure, shear, touched};
 }
 
 // A case prepared but not solved: its particles at t = 0 from the subdomain files (each rank's owned
@@ -265,6 +305,7 @@ int run(int argc, char** argv) {
     data.push_back({"rank", 1, {}, fr.rank});
     rk::write_vtu(case_dir + "/vtk/" + name, fr.x, data, cells, {{"rank", 1, {}, cell_rank}}, !uncompressed);
     index.push_back({fr.time, 0, name, "part"});
+    std::size_t first_triangle = 0;  // die k's first in the frame's die datasets
     for (std::size_t k = 0; k < dies.size(); ++k) {
       const auto& die = scene.dies[k];
       std::vector<double> x = dies[k].vertices;
@@ -272,7 +313,9 @@ int run(int argc, char** argv) {
       for (std::size_t v = 0; v < x.size(); ++v) x[v] += stroke * die.motion.direction[v % 3];
       char file[160];
       std::snprintf(file, sizeof file, "die_%s_%05d.vtu", die.name.c_str(), f);
-      rk::write_vtu(case_dir + "/vtk/" + file, x, {}, rk::VtuCells::triangles(dies[k].triangles), {}, !uncompressed);
+      rk::write_vtu(case_dir + "/vtk/" + file, x, {}, rk::VtuCells::triangles(dies[k].triangles),
+                    die_fields(dies[k], fr, first_triangle), !uncompressed);
+      first_triangle += dies[k].triangles.size() / 3;
       index.push_back({fr.time, int(k + 1), file, die.name});
     }
   }

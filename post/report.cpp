@@ -133,6 +133,17 @@ void write_report(const std::string& case_dir) {
       }
     }
   }
+  // the die fill: every die's filled fraction at the end (a `.filled` column; cases solved before
+  // 2026-12-02 have none)
+  std::vector<std::pair<std::string, double>> fill;
+  for (std::size_t k = 0; k < names.size() && k < values.size(); ++k)
+    if (names[k].ends_with(".filled")) fill.push_back({names[k].substr(0, names[k].size() - 7), std::stod(values[k])});
+  if (!fill.empty()) {
+    r << "\n## Die fill\n\nThe share of each die's surface that faces the part which the material has touched "
+         "(the dies' field `touched` in ParaView shows where; `contact_pressure` and `contact_shear` the loads).\n\n"
+         "| die | filled |\n|---|---|\n";
+    for (const auto& [die, f] : fill) r << "| " << die << " | " << num(100 * f, 3) << " % |\n";
+  }
   std::erase_if(presses, [](const Press& p) { return p.travel == 0; });  // a die at rest is no press
   if (!presses.empty()) {
     r << "\n## Press force\n\n| die | largest force (whole part) | at stroke |\n|---|---|---|\n";

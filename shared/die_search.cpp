@@ -131,6 +131,7 @@ DieHit DieSearch::nearest(const double x[3]) const {
     const double tol = std::isfinite(best) ? 1e-18 + 1e-12 * best : 0.0;
     if (!std::isfinite(best) || d2 < best - tol) {  // a strictly closer point: restart the pseudo-normal
       best = d2;
+      hit.triangle = t;
       for (int i = 0; i < 3; ++i) best_point[i] = c[i], pseudo[i] = normal_[3 * t + i];
     } else if (d2 <= best + tol) {  // the same point seen from a neighbouring triangle (edge, vertex)
       for (int i = 0; i < 3; ++i) pseudo[i] += normal_[3 * t + i];
@@ -138,7 +139,7 @@ DieHit DieSearch::nearest(const double x[3]) const {
   }
   if (!std::isfinite(best)) return hit;
   const double len = std::sqrt(dot3(pseudo, pseudo));
-  if (!(len > 0)) return hit;
+  if (!(len > 0)) return DieHit{};
   hit.found = true;
   double diff[3];
   for (int i = 0; i < 3; ++i) hit.normal[i] = pseudo[i] / len, diff[i] = x[i] - best_point[i];

@@ -16,6 +16,7 @@ struct DieHit {
   bool found = false;   // a triangle within the search margin
   double gap = 0;       // signed distance: < 0 inside the die
   double normal[3] = {0, 0, 0};  // unit outward normal at the closest point (pseudo-normal at edges)
+  std::int32_t triangle = -1;    // the (first) triangle holding the closest point
 };
 
 // Closest point to p on the triangle (a, b, c) (Ericson, Real-Time Collision Detection, 5.1.5).

@@ -4,7 +4,7 @@ namespace rk {
 namespace {
 
 constexpr const char* kWallColumns[] = {".force"};
-constexpr const char* kDieColumns[] = {".stroke", ".force", ".fx", ".fy", ".fz", ".work"};
+constexpr const char* kDieColumns[] = {".stroke", ".force", ".fx", ".fy", ".fz", ".work", ".filled"};
 constexpr const char* kRamColumns[] = {".speed", ".delivered"};  // a die driven by its press
 constexpr const char* kFixedFaceColumns[] = {".fx", ".fy", ".fz"};
 constexpr const char* kPrescribedFaceColumns[] = {".stroke", ".fx", ".fy", ".fz"};

@@ -6,7 +6,8 @@
 // conduction the heat given to the ambient (kConductionColumns), with damage its criteria's largest
 // values (kDamageColumns), then per rigid wall its force along
 // its normal, per die its stroke, press force (along its motion, times force_factor), force
-// components, press work and with conduction the heat conducted into it,
+// components, press work, filled fraction (the touched share of its surface that faces the part) and
+// with conduction the heat conducted into it, for a press-driven die its ram's speed and delivered energy,
 // per fixed face its reaction components, per prescribed face its stroke and reaction components.
 #pragma once
 #include <string>

@@ -5,8 +5,7 @@
 // was computed on: a reader merges only its own case's frames). Datasets under frames/FFFFF/:
 // time (s), step, global_id, x (3 per particle: the material's current position X + u^h(X), m),
 // then kFrameFields, kThermalFields where the material has a temperature and kDamageFields where
-// the scene asks for damage; where a die is driven by its press (its stroke is no function of time),
-// die_stroke: every die's stroke along its direction (m).
+// the scene asks for damage; with dies, the kDie* datasets below.
 #pragma once
 #include <cstdint>
 #include <cstdio>
@@ -37,6 +36,16 @@ inline constexpr FrameField kThermalFields[] = {
 // Written only where the scene has a `damage` section: the criteria of solver/material/damage.hpp
 // (0 for one the scene does not ask for).
 inline constexpr FrameField kDamageFields[] = {{"damage_cockcroft_latham", 1, "-"}, {"damage_brozzo", 1, "-"}};
+
+// With dies, over all dies' triangles in order (die k's after die k-1's): every die's stroke along
+// its direction (m); this rank's contact loads on each triangle, 4 fixed-point integers (the normal
+// force, >= 0, and the tangential force on the die, x y z) that sum over the ranks exactly, times
+// die_load_scale (N per unit, one value); whether this rank's material has touched the triangle so
+// far (0 / 1).
+inline constexpr const char* kDieStroke = "die_stroke";
+inline constexpr const char* kDieLoad = "die_load";
+inline constexpr const char* kDieLoadScale = "die_load_scale";
+inline constexpr const char* kDieTouched = "die_touched";
 
 // CASE/results/rank_NNNN
 inline std::string result_frame_dir(const std::string& case_dir, int rank) {

@@ -12,6 +12,7 @@
 
 #include "boundary/essential_bc.hpp"
 #include "contact/die_contact.hpp"
+#include "contact/die_fill.hpp"
 #include "contact/presses.hpp"
 #include "energy.hpp"
 #include "error.hpp"
@@ -92,6 +93,7 @@ class Simulation {
   std::unique_ptr<EssentialBcs> ebc_;
   std::unique_ptr<DieContact> dies_;
   std::unique_ptr<Presses> presses_;    // with dies driven by their press only
+  std::unique_ptr<DieFill> fill_;       // with dies only
   std::unique_ptr<HeatTransfer> heat_;  // with conduction only
   std::unique_ptr<ResultWriter> results_;
   std::unique_ptr<History> history_;
@@ -156,6 +158,7 @@ void Simulation::reference_update() {
   collectively(comm_, [&] { return update_reference(md_, st_, scene_, comm_, project), 0; });
   rebind();
   if (heat_) heat_->reproject(md_, st_, comm_);  // the heat content kept on the new shapes
+  clock_.dt_penalty = -1;  // the new configuration's steps set the penalty afresh (contact_laws.hpp)
   timer_.stop(kReferenceUpdate);
 }
 
@@ -168,7 +171,7 @@ bool Simulation::checkpoint_due(bool last) const {
 void Simulation::checkpoint() {
   last_checkpoint_wall_ = comm_.wtime();
   clock_.frames = results_->frames();
-  collectively(comm_, [&] { return write_checkpoint(opt_.case_dir, md_, st_, clock_, dies_->totals()), 0; });
+  collectively(comm_, [&] { return write_checkpoint(opt_.case_dir, md_, st_, clock_, *dies_), 0; });
   timer_.stop(kCheckpoint);
 }
 
@@ -198,7 +201,9 @@ void Simulation::stress_update() {
 
 void Simulation::contact() {
   if (presses_) presses_->place(st_, *dies_, false);  // the rams at s^n, v^{n-1/2}
-  contact_bound_ = dies_->compute(md_, st_, st_.t, clock_.dt_stable, clock_.dt_penalty);
+  // the penalty's step: the smallest since the start or the last reference update (< 0 just after one)
+  const double dt_min = clock_.dt_penalty > 0 ? clock_.dt_penalty : clock_.dt_stable;
+  contact_bound_ = dies_->compute(md_, st_, st_.t, clock_.dt_stable, dt_min);
   timer_.stop(kContact);
 }
 
@@ -234,7 +239,7 @@ void Simulation::check_health() const {
 double Simulation::step_size(bool last) {
   double dt = limits_.dt;
   clock_.dt_stable = dt;
-  clock_.dt_penalty = std::min(clock_.dt_penalty, dt);
+  clock_.dt_penalty = clock_.dt_penalty > 0 ? std::min(clock_.dt_penalty, dt) : dt;
   if (!last) {
     const double out_dt = scene_.time.output_interval;
     dt = std::min(dt, scene_.time.end - st_.t);
@@ -308,7 +313,9 @@ bool Simulation::history_due(bool last) const {
 }
 
 void Simulation::history(double dt, bool last) {
-  const HistoryRow row = history_->record(md_, st_, *dies_, *ebc_, v_old_, dt, clock_.kinetic0, comm_);
+  static const std::vector<double> none;
+  const std::vector<double>& filled = fill_ ? fill_->filled(*dies_, comm_) : none;
+  const HistoryRow row = history_->record(md_, st_, *dies_, filled, *ebc_, v_old_, dt, clock_.kinetic0, comm_);
   tracks_->record(md_, st_, comm_);
   const double t_end = scene_.time.end;
   max_ebc_error_ = std::max(max_ebc_error_, row.ebc_error);
@@ -348,17 +355,18 @@ void Simulation::displacement_update(double dt) {
 
 // Output is collective; a failure on any rank (disk full, unwritable directory) stops every rank.
 void Simulation::write_frame(const std::vector<double>& velocity) {
-  std::vector<double> die_stroke;  // where a press drives a die, rkpost finds its stroke in the frame
-  for (std::size_t k = 0; presses_ && k < dies_->size(); ++k) die_stroke.push_back(dies_->stroke(k, st_.t));
-  collectively(comm_, [&] { return results_->write_frame(md_, st_, velocity, comm_, die_stroke), 0; });
+  const DieFrame dies = fill_ ? fill_->frame(*dies_, st_.t, comm_) : DieFrame{};
+  collectively(comm_, [&] { return results_->write_frame(md_, st_, velocity, comm_, dies), 0; });
 }
 
 void Simulation::rebind() {
   const int die_count = int(md_.dies.size());
   ebc_ = collectively(comm_, [&] { return std::make_unique<EssentialBcs>(md_, scene_, comm_); });
   const std::vector<DieTotals> totals = dies_->totals();
+  const std::vector<std::int64_t> touched = dies_->touched();  // the die fill stays
   dies_ = std::make_unique<DieContact>(md_, scene_, md_.dies);
   dies_->totals() = totals;
+  dies_->touched() = touched;
   exchange_.emplace(md_, 3);
   headroom_ = force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm_);
   if (heat_) heat_ = std::make_unique<HeatTransfer>(md_, scene_, comm_);  // the capacities on the new reference
@@ -412,12 +420,13 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   ebc_ = collectively(comm, [&] { return std::make_unique<EssentialBcs>(md_, scene_, comm); });
   ebc_->apply(md_, st_, 0.0, 0.0, 0.0, st_.v);  // initial velocities that meet the conditions' rates
   dies_ = std::make_unique<DieContact>(md_, scene_, md_.dies);
+  if (!md_.dies.empty()) fill_ = std::make_unique<DieFill>(md_, *dies_, comm);
   clock_.dt_stable = dt0;  // the last unclipped global stable step: the stick force's step
   clock_.dt_penalty = dt0;  // and the smallest so far: the penalty stiffness
   clock_.kinetic0 = compute_energies(md_, st_, st_.v, comm).kinetic;
   if (opt.restart) {
     const std::string path = restart_checkpoint(opt.case_dir, comm);
-    collectively(comm, [&] { return read_checkpoint(path, md_, st_, clock_, dies_->totals()), 0; });
+    collectively(comm, [&] { return read_checkpoint(path, md_, st_, clock_, *dies_), 0; });
   } else {
     collectively(comm, [&] { return remove_checkpoints(opt.case_dir, comm.rank()), 0; });
   }

@@ -92,6 +92,9 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
   }
   die_moved_.assign(dies_.size(), 0.0);
   driven_.assign(2 * dies_.size(), 0.0);
+  triangle0_.assign(1, 0);
+  for (const auto& sf : surfaces_) triangle0_.push_back(triangle0_.back() + sf.triangles.size() / 3);
+  touched_.assign(triangle0_.back(), 0);
   for (const auto& sf : surfaces_) {
     double b[6] = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
     for (std::size_t v = 0; v < sf.vertices.size() / 3; ++v)
@@ -167,7 +170,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
         return search_[k]->nearest(y);
       }
       const Plane& p = planes_[k - dies_.size()];
-      DieHit hit{true, 0, {p.normal[0], p.normal[1], p.normal[2]}};
+      DieHit hit{true, 0, {p.normal[0], p.normal[1], p.normal[2]}, -1};
       for (int i = 0; i < 3; ++i) hit.gap += (x[i] - p.point[i]) * p.normal[i];
       return hit;
     };
@@ -182,7 +185,8 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
       if (!hit.found || hit.gap >= 0) continue;
       const double depth = -hit.gap, m = mass_[s];
       const double kI = penalty_stiffness(penalty_scale_, m, dt_min, dt);
-      Active a{std::int32_t(s), std::int32_t(k), {}, {}};
+      Active a{std::int32_t(s), std::int32_t(k), {}, {}, die ? hit.triangle : -1};
+      if (die) touched_[triangle0_[k] + std::size_t(hit.triangle)] = 1;
       penalty_force(kI, depth, hit.normal, a.normal_force);
       double v_rel[3], vt[3];  // the material's velocity relative to the obstacle
       material_value(md, st.v, s, v_rel);
@@ -252,7 +256,8 @@ void DieContact::face_friction(const Model& md, const State& st, double t, doubl
       face_velocity(md, st.v, f, v_rel);
       for (int i = 0; i < 3; ++i) v_rel[i] -= rate * die.motion.direction[i];
       const double vt_norm = tangential_velocity(v_rel, hit.normal, vt);
-      FaceFriction ff{std::int32_t(f), std::int32_t(k), {}};
+      FaceFriction ff{std::int32_t(f), std::int32_t(k), {}, hit.triangle};
+      touched_[triangle0_[k] + std::size_t(hit.triangle)] = 1;
       interface_friction(tau, area, face_mass_[f] * vt_norm / dt, vt, vt_norm, ff.force);
       DieTotals& tot = totals_[k];
       for (int i = 0; i < 3; ++i) {
@@ -307,6 +312,31 @@ Fixed DieContact::reaction(std::size_t k, const FixedScale& scale) const {
   for (const auto& ff : face_active_)
     if (std::size_t(ff.die) == k) sum += scale.fixed(ff.force[0] * d[0] + ff.force[1] * d[1] + ff.force[2] * d[2]);
   return sum;
+}
+
+double DieContact::surface_load_bound() const {
+  double largest = 0;
+  for (const auto& a : active_)
+    if (a.triangle >= 0)
+      for (int i = 0; i < 3; ++i) largest = std::max({largest, std::abs(a.normal_force[i]), std::abs(a.friction_force[i])});
+  for (const auto& ff : face_active_)
+    for (int i = 0; i < 3; ++i) largest = std::max(largest, std::abs(ff.force[i]));
+  return 2 * largest;  // the normal force's magnitude is at most sqrt 3 of its largest component
+}
+
+void DieContact::surface_loads(const FixedScale& scale, std::vector<Fixed>& out) const {
+  out.assign(4 * triangle0_.back(), 0);
+  for (const auto& a : active_) {
+    if (a.triangle < 0) continue;
+    Fixed* t = &out[4 * (triangle0_[std::size_t(a.obstacle)] + std::size_t(a.triangle))];
+    const double* f = a.normal_force;
+    t[0] += scale.fixed(std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]));
+    for (int i = 0; i < 3; ++i) t[1 + i] -= scale.fixed(a.friction_force[i]);  // on the die
+  }
+  for (const auto& ff : face_active_) {  // a face's friction: tangential (the faces carry no normal force)
+    Fixed* t = &out[4 * (triangle0_[std::size_t(ff.die)] + std::size_t(ff.triangle))];
+    for (int i = 0; i < 3; ++i) t[1 + i] -= scale.fixed(ff.force[i]);
+  }
 }
 
 double DieContact::symmetry_depth() const { return planes_.size() > walls_ ? totals_.back().max_penetration : 0.0; }

@@ -84,6 +84,17 @@ class DieContact {
   Fixed reaction(std::size_t k, const FixedScale& scale) const;
   // This rank's contact terms that may push a die (particle and point slaves, boundary faces with friction)
   std::size_t terms() const { return mass_.size() + face_mass_.size(); }
+
+  // The dies' surfaces, their triangles numbered over all dies (die k's from triangle0(k)):
+  // - this step's loads on them, per triangle the normal force (N, >= 0) and the tangential force
+  //   on the die (3 components), each contribution in fixed point (the same on every partition), and
+  //   the largest single contribution (the scale's bound);
+  // - which triangles the material has touched so far (1), this rank's slaves and faces (checkpointed).
+  std::size_t triangle0(std::size_t k) const { return triangle0_[k]; }
+  double surface_load_bound() const;
+  void surface_loads(const FixedScale& scale, std::vector<Fixed>& out) const;  // 4 per triangle
+  const std::vector<std::int64_t>& touched() const { return touched_; }
+  std::vector<std::int64_t>& touched() { return touched_; }  // restored from a checkpoint
   // The force of rigid wall w on the part along the wall's normal, this step (totals()[size() + w]).
   double wall_force(std::size_t w) const;
   // How deep this rank's material is past a symmetry plane this step (m), and the local particle
@@ -100,6 +111,7 @@ class DieContact {
   struct Active {
     std::int32_t slave, obstacle;  // slave: particles first, then points; obstacle: dies, then planes
     double normal_force[3], friction_force[3];
+    std::int32_t triangle;         // of the die's surface (-1: a plane)
   };
   Row row(const Model& md, std::size_t s) const;
   DieHit die_hit(std::size_t k, const double x[3], double t) const;  // x's closest point on die k at time t
@@ -131,6 +143,7 @@ class DieContact {
   struct FaceFriction {
     std::int32_t face, die;
     double force[3];
+    std::int32_t triangle;
   };
   void face_friction(const Model& md, const State& st, double t, double dt, double& largest);
   void face_velocity(const Model& md, const std::vector<double>& v, std::size_t f, double out[3]) const;
@@ -147,6 +160,8 @@ class DieContact {
   std::vector<DieTotals> totals_;
   std::vector<double> die_box_;  // per die at t = 0: lo[3], hi[3]
   std::vector<double> driven_;   // per die: the stroke and rate a press set (drive)
+  std::vector<std::size_t> triangle0_;  // per die: its first triangle's number over all dies, then the count
+  std::vector<std::int64_t> touched_;   // per triangle: touched by this rank's material so far (0 / 1)
   double penalty_scale_, margin_ = 0;
 };
 

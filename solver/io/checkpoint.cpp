@@ -28,7 +28,8 @@ std::vector<double> ram_rows(const State& st) {  // State::Ram's fields, a row p
 }
 
 void write_temporary(const std::string& tmp, const Model& md, const State& st, const RunClock& c,
-                     const std::vector<DieTotals>& dies) {
+                     const DieContact& contact) {
+  const std::vector<DieTotals>& dies = contact.totals();
   {
     H5File f(tmp, H5File::Mode::create);
     f.set_attr("rank", std::int64_t(md.rank));
@@ -43,6 +44,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     for (const auto& d : dies) die_work.insert(die_work.end(), {d.press_work, d.friction_work, d.contact_work});
     f.write("dies/work", die_work, 3);
     if (!st.rams.empty()) f.write("dies/rams", ram_rows(st), State::kRamValues);
+    if (!contact.touched().empty()) f.write("dies/touched", contact.touched());
     f.set_attr("reference_updates", st.reference_updates);
     f.write("particles/global_id", md.global_id);
     f.write("particles/u", st.u, 3);
@@ -86,6 +88,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
                check.read<double>("points/ep") == st.ep && check.read<double>("points/wp") == st.wp &&
                (st.q.empty() || (check.read<double>("points/q") == st.q && check.read<double>("points/J_last") == st.J_last)) &&
                (st.rams.empty() || check.read<double>("dies/rams", State::kRamValues) == ram_rows(st)) &&
+               (contact.touched().empty() || check.read<std::int64_t>("dies/touched") == contact.touched()) &&
                (st.temperature.empty() || check.read<double>("points/temperature") == st.temperature) &&
                (st.stretch_last.empty() || check.read<double>("points/stretch_last") == st.stretch_last) &&
                (st.damage.empty() || check.read<double>("points/damage", 2) == st.damage) &&
@@ -105,7 +108,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
 }  // namespace
 
 void write_checkpoint(const std::string& case_dir, const Model& md, const State& st, const RunClock& c,
-                      const std::vector<DieTotals>& dies) {
+                      const DieContact& dies) {
   const std::string path = checkpoint_path(case_dir, md.rank), tmp = path + ".tmp";
   std::filesystem::create_directories(case_dir + "/checkpoint");
   try {
@@ -158,7 +161,8 @@ std::string restart_checkpoint(const std::string& case_dir, const Comm& comm) {
   return mine[0] == std::int64_t(step) ? newest : previous;
 }
 
-void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c, std::vector<DieTotals>& dies) {
+void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c, DieContact& contact) {
+  std::vector<DieTotals>& dies = contact.totals();
   H5File f(path, H5File::Mode::read);
   const std::int64_t updates = f.exists("particles/global_id") ? f.attr_int("reference_updates") : 0;
   if ((updates == 0 && f.attr_int("particles") != std::int64_t(md.n)) || f.attr_int("points") != std::int64_t(md.m))
@@ -179,6 +183,12 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
   const auto work = f.read<double>("dies/work", 3);
   for (std::size_t k = 0; k < dies.size(); ++k)
     dies[k].press_work = work[3 * k], dies[k].friction_work = work[3 * k + 1], dies[k].contact_work = work[3 * k + 2];
+  if (!contact.touched().empty()) {
+    if (!f.exists("dies/touched")) throw Error(path + ": the checkpoint holds no die fill; re-run from the start");
+    const auto touched = f.read<std::int64_t>("dies/touched");
+    if (touched.size() != contact.touched().size()) throw Error(path + ": the checkpoint's die surfaces do not match this case's");
+    contact.touched() = touched;
+  }
   if (f.exists("dies/rams")) {  // the rams of the dies driven by their press
     const auto rows = f.read<double>("dies/rams", State::kRamValues);
     st.rams.resize(rows.size() / State::kRamValues);

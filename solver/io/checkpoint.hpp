@@ -24,7 +24,9 @@ struct RunClock {
   double next_output = 0, next_history = 0, dt_stable = 0, kinetic0 = 0, last_error = 0, max_ke_ratio = 0;
   double max_error = 0;  // the largest energy error of the run so far
   double max_pressure_ratio = 0;  // the largest |p| / (rho0 c_L v_max + sigma_y) so far (PressureBound)
-  double dt_penalty = 0;  // the smallest unclipped global stable step so far: sets the penalty stiffness
+  // the smallest unclipped global stable step since the start or the last reference update (-1 just
+  // after one: the next step's): sets the penalty stiffness
+  double dt_penalty = 0;
   std::int64_t frames = 0;
 };
 
@@ -38,12 +40,12 @@ void remove_checkpoints(const std::string& case_dir, int rank);
 // One clear error on every rank when there is none.
 std::string restart_checkpoint(const std::string& case_dir, const Comm& comm);
 
+// `dies`: their totals (work, heat) and the die triangles this rank's material has touched.
 void write_checkpoint(const std::string& case_dir, const Model& md, const State& st, const RunClock& clock,
-                      const std::vector<DieTotals>& dies);
+                      const DieContact& dies);
 
 // Reads a checkpoint of this rank into st/clock/dies; checks it belongs to this model. After reference
 // updates it also sets md.point_X and st.u_ref, J_ref (the caller then rebuilds the model).
-void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& clock,
-                     std::vector<DieTotals>& dies);
+void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& clock, DieContact& dies);
 
 }  // namespace rk

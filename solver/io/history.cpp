@@ -63,7 +63,8 @@ History::History(const std::string& case_dir, const Scene& scene, const Model& m
   sums_.resize(kSumCount + scene.rigid_walls.size() + kPerDie * scene.dies.size() + 3 * faces);
 }
 
-HistoryRow History::record(const Model& md, const State& st, const DieContact& dies, const EssentialBcs& ebc,
+HistoryRow History::record(const Model& md, const State& st, const DieContact& dies, const std::vector<double>& filled,
+                           const EssentialBcs& ebc,
                            const std::vector<double>& v_old, double dt, double kinetic0, const Comm& comm) {
   HistoryRow out;
   Energies& e = out.energies;
@@ -138,6 +139,7 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
                                     f[2] * die.motion.direction[2]);
     row_[c++] = f[0], row_[c++] = f[1], row_[c++] = f[2];
     row_[c++] = f[3];
+    row_[c++] = filled[d];
     if (conducting) row_[c++] = f[4];
     if (die.motion.driven()) row_[c++] = dies.rate(d, st.t), row_[c++] = st.rams[ram++].delivered;  // vbar over the step
   }

@@ -55,7 +55,9 @@ class History {
 
   // One row at t^n (v_old = v^{n-1/2}; st.v = v^{n+1/2}; dt the step from t^n). Collective: a write
   // that fails on rank 0 (a full disk) stops every rank.
-  HistoryRow record(const Model& md, const State& st, const DieContact& dies, const EssentialBcs& ebc,
+  // `filled`: each die's filled fraction (contact/die_fill.hpp)
+  HistoryRow record(const Model& md, const State& st, const DieContact& dies, const std::vector<double>& filled,
+                    const EssentialBcs& ebc,
                     const std::vector<double>& v_old, double dt, double kinetic0, const Comm& comm);
 
   const std::vector<std::string>& columns() const { return columns_; }

@@ -1,0 +1,39 @@
+// What the material does to the dies' surfaces: the contact loads on every triangle at a frame, and
+// which triangles it has touched so far (DieContact keeps both per rank). A die's filled fraction is
+// the touched share of its working surface, the triangles that face the part (outward normal toward
+// the part's centre of mass at t = 0): a closed die's cavity, a flat die's face, not its back or sides.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "contact/die_contact.hpp"
+#include "model.hpp"
+#include "parallel/comm.hpp"
+
+namespace rk {
+
+// A frame's die datasets (shared/result_frame.hpp, kDieFrame*): every die's stroke; this rank's loads
+// per triangle (normal force, tangential force on the die) in fixed point at a scale common to all
+// ranks, so their sum over ranks is the same on any partition; its touched flags.
+struct DieFrame {
+  std::vector<double> stroke;
+  double load_scale = 0;  // N per fixed-point unit
+  std::vector<Fixed> load;
+  std::vector<std::int64_t> touched;
+};
+
+class DieFill {
+ public:
+  DieFill(const Model& md, const DieContact& dies, const Comm& comm);
+  // Collective: each die's filled fraction (its touched working area over its working area)
+  const std::vector<double>& filled(const DieContact& dies, const Comm& comm);
+  // Collective: the frame's die datasets at time t
+  DieFrame frame(const DieContact& dies, double t, const Comm& comm) const;
+
+ private:
+  std::vector<double> working_;  // per triangle: its area where it faces the part, else 0
+  std::vector<double> flags_, filled_;  // reduction buffer (per triangle), the fractions (per die)
+  int headroom_ = 0;  // bits for every contact term of every rank
+};
+
+}  // namespace rk
