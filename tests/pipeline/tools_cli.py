@@ -23,6 +23,20 @@ p = tools.run([tools.bin / "rkprep", rkcase.TAYLOR, "--ranks", "0", "--out", too
 rkcase.check(p.returncode != 0 and "--ranks: 0 is not a number of ranks (a whole number, at least 1)" in p.stderr
              and len(p.stderr) < 200, f"rkprep --ranks 0: {p.stderr.strip()}")
 
+# an --out that cannot take files is refused before any meshing, with one message naming it. The
+# tests run as root, whom a chmod does not stop: a folder under a regular file cannot be made, and
+# sysfs takes no new file even from root.
+blocker = tools.work / "a_file"
+blocker.write_text("not a folder\n")
+unwritable = [(blocker / "case", "cannot create the case folder")]
+if __import__("os").path.isdir("/sys/kernel"):
+    unwritable.append(("/sys/kernel", "cannot write in the case folder"))
+for out, says in unwritable:
+    p = tools.run([tools.bin / "rkprep", rkcase.TAYLOR, "--out", out], expect_ok=False)
+    rkcase.check(p.returncode != 0 and f"rkprep: error: {out}: {says}" in p.stderr and "internal error" not in p.stderr
+                 and "mesh" not in p.stdout and len(p.stderr.strip().splitlines()) == 1,
+                 f"rkprep --out {out}: refused before meshing: {p.stderr.strip()}")
+
 # a new prep never lies beside another case's results: refused without --force, replaced with it
 tools.solve(case, 1, sets=["time.end=1e-6"])
 again = [tools.bin / "rkprep", rkcase.TAYLOR, "--ranks", 1, "--out", case, "--quiet", "--set", "discretization.spacing=1.5e-3"]
