@@ -138,7 +138,7 @@ if a.stage == "checkpoint":
                  f"5.361 (converged codes 5.44-5.46)")
 else:
     r, L = m["footprint_radius_mm"], m["final_length_mm"]
-    rkcase.check(prep["particles"] == 1369, "the seed's 1369 particles")
+    rkcase.check(prep["particles"] == 1369, "the 2007 paper's 1369 particles")
     rkcase.check(abs(m["time_s"] - 80e-6) < 1e-12, "last frame at 80 us")
     if a.stage == "nodal":
         rkcase.check(prep["integration_points"] == prep["particles"], "nodal integration: one point per particle")

@@ -1,5 +1,5 @@
-"""Frictionless upsetting of an aluminium cylinder at a coarse resolution against the closed form
-(BENCHMARKS.md case 2): die force F = sigma(ep) A0 H0 / H and diameter D0 sqrt(H0/H) at 10-50 %
+"""Frictionless upsetting of an aluminium cylinder at a coarse resolution against the closed form:
+die force F = sigma(ep) A0 H0 / H and diameter D0 sqrt(H0/H) at 10-50 %
 height reduction, quasi-static (kinetic/internal < 1 %); the normalized Cockcroft-Latham damage stays
 near zero (homogeneous compression has no tensile principal stress); and a short run on 2 ranks equal to
 1 rank."""
