@@ -31,6 +31,8 @@ SIZES = {"10k": "0.45e-3", "100k": "0.19e-3", "1M": "0.085e-3"}  # spacing (m) f
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1")
 PY = "/usr/bin/python3"
+sys.path.insert(0, str(ROOT / "scripts"))
+from case_check import read_solve  # noqa: E402
 
 
 def run(args, capture=False):
@@ -49,7 +51,7 @@ def prep(a, case, ranks, spacing=None, sets=()):
 def solve(a, case, ranks, *settings):
     sets = [x for s in settings for x in ("--set", s)]
     run(["mpirun", "-np", ranks, a.bin / "rksolve", case, "--quiet", *sets])
-    return json.loads((case / "solve.json").read_text())
+    return read_solve(case)
 
 
 def update_cost(neighbours, plastic_fraction):

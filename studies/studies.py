@@ -307,7 +307,7 @@ def adopt(name, source, note=""):
     out = WORK / study / c.name
     shutil.rmtree(out, ignore_errors=True)
     shutil.copytree(source, out, symlinks=True)
-    s = json.loads((out / "solve.json").read_text())
+    s = case_check.read_solve(out)
     result = {"study": study, "case": c.name, "label": c.label, "ranks": s["ranks"], **c.tags, "prep": c.prep,
               "solve": c.solve, "verdict": "completed", "solved_elsewhere": note or str(source)}
     measure(c, out, result)
@@ -326,7 +326,7 @@ def remeasure(name):
 def measure(c, out, result):
     """solve.json's figures, rkpost, and the case's own metrics into result."""
     if (out / "solve.json").exists():
-        s = json.loads((out / "solve.json").read_text())
+        s = case_check.read_solve(out)
         result.update({k: s[k] for k in ("wall_s", "setup_s", "steps", "particles", "integration_points",
                                          "ns_per_point_update", "energy_error", "peak_memory_mb_max_rank")})
     result["prep_s"] = json.loads((out / "prep.json").read_text()).get("wall_s")

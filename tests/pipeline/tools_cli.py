@@ -106,3 +106,32 @@ table = [ln for ln in p.stdout.splitlines() if ln.startswith("reduction")]
 rkcase.check(table == ["reduction  force (kN)  exact (kN)  difference"] and "   10 %" in p.stdout
              and "friction mu = 0.12: the differences below are from the frictionless closed form, not errors" in p.stdout,
              f"upsetting_check.py with friction: the force's departure is a difference: {p.stdout.strip()}")
+
+# solve.json of another format (a run of another rksolve version; history.csv has no format of its
+# own, the solve.json of its run vouches for it): every script that reads the case refuses it with
+# one line naming the file, exit 1, no traceback; a damaged one the same; a run that did not finish
+# (no solve.json) is read as it is. The scripts read the format rksolve writes (shared/run_summary.hpp).
+import json  # noqa: E402
+import re  # noqa: E402
+import shutil  # noqa: E402
+import case_check  # noqa: E402
+cpp = re.search(r"kRunSummaryFormat = (\d+);", (rkcase.ROOT / "shared" / "run_summary.hpp").read_text())
+rkcase.check(cpp and int(cpp[1]) == case_check.SOLVE_FORMAT,
+             f"the scripts read solve.json format {case_check.SOLVE_FORMAT}, rksolve writes {cpp and cpp[1]}")
+other = tools.case("solve_format_7")
+shutil.copytree(upset, other)
+summary = json.loads((other / "solve.json").read_text())
+readers = ("taylor_metrics", "plot_taylor", "upsetting_check", "history_plots", "forming_report", "beam_check",
+           "elastic_bar_check", "pressure_oscillation")
+for content, says in ((json.dumps({**summary, "format": 7}), "written by another version of rksolve (format 7, this "
+                       f"script reads {case_check.SOLVE_FORMAT}); re-run rksolve on the case"),
+                      ('{"format": 1, "steps":', "cannot read it as JSON")):
+    (other / "solve.json").write_text(content)
+    for name in readers:
+        p = tools.run(["/usr/bin/python3", rkcase.ROOT / "scripts" / f"{name}.py", other], expect_ok=False)
+        lines = p.stderr.strip().splitlines()
+        rkcase.check(p.returncode == 1 and len(lines) == 1 and lines[0].startswith(f"{name}.py: {other / 'solve.json'}: {says}"),
+                     f"{name}.py: {p.stderr.strip()}")
+(other / "solve.json").unlink()
+p = tools.run(["/usr/bin/python3", rkcase.ROOT / "scripts" / "upsetting_check.py", other])
+rkcase.check("   10 %" in p.stdout, "upsetting_check.py reads a run without solve.json (one that did not finish)")
