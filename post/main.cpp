@@ -28,6 +28,7 @@ constexpr const auto& kFields = rk::kFrameFields;
 
 struct Frame {
   double time = 0;
+  std::vector<double> die_stroke;  // each die's, where the frame holds them (a press drives a die)
   std::vector<std::int64_t> gid, rank;
   std::vector<double> x;
   std::vector<std::vector<double>> values;  // per selected field
@@ -57,6 +58,7 @@ Frame read_frame(const std::string& case_dir, int ranks, int f, const std::vecto
       throw ForeignFrame(path + ": computed on another scene's subdomains (scene hash " + hash + ", this case's " +
                          scene_hash + "): a result of an earlier case; re-run rksolve on this case");
     fr.time = h.read<double>(g + "time")[0];
+    if (h.exists(g + "die_stroke")) fr.die_stroke = h.read<double>(g + "die_stroke");
     auto gid = h.read<std::int64_t>(g + "global_id");
     fr.rank.insert(fr.rank.end(), gid.size(), std::int64_t(r));
     fr.gid.insert(fr.gid.end(), gid.begin(), gid.end());
@@ -266,7 +268,7 @@ int run(int argc, char** argv) {
     for (std::size_t k = 0; k < dies.size(); ++k) {
       const auto& die = scene.dies[k];
       std::vector<double> x = dies[k].vertices;
-      const double stroke = die.motion.stroke(fr.time);
+      const double stroke = k < fr.die_stroke.size() ? fr.die_stroke[k] : die.motion.stroke(fr.time);
       for (std::size_t v = 0; v < x.size(); ++v) x[v] += stroke * die.motion.direction[v % 3];
       char file[160];
       std::snprintf(file, sizeof file, "die_%s_%05d.vtu", die.name.c_str(), f);

@@ -82,6 +82,7 @@ void write_report(const std::string& case_dir) {
     << prep["integration_points"] << " |\n";
   r << "| ranks | " << prep["ranks"] << " (imbalance " << num(prep["partition"]["imbalance"], 3) << ") |\n";
   for (const auto& w : solve.warnings) r << "| **warning** | " << w << " |\n";
+  for (const auto& p : solve.presses) r << "| press | " << p << " |\n";
   if (!finished) {
     r << "| run | **not finished**: no solve.json (rksolve stopped with an error, its message says why, or is "
          "still running); history.csv ends at t = "

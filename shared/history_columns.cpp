@@ -5,6 +5,7 @@ namespace {
 
 constexpr const char* kWallColumns[] = {".force"};
 constexpr const char* kDieColumns[] = {".stroke", ".force", ".fx", ".fy", ".fz", ".work"};
+constexpr const char* kRamColumns[] = {".speed", ".delivered"};  // a die driven by its press
 constexpr const char* kFixedFaceColumns[] = {".fx", ".fy", ".fz"};
 constexpr const char* kPrescribedFaceColumns[] = {".stroke", ".fx", ".fy", ".fz"};
 
@@ -24,6 +25,8 @@ std::vector<std::string> history_columns(const Scene& scene) {
   for (const auto& d : scene.dies) {
     for (const char* q : kDieColumns) c.push_back(d.name + q);
     if (scene.material.conducting()) c.push_back(d.name + ".heat");
+    if (d.motion.driven())
+      for (const char* q : kRamColumns) c.push_back(d.name + q);
   }
   for (const auto& f : scene.fixed_faces)
     for (const char* q : kFixedFaceColumns) c.push_back(f.name + q);
@@ -42,7 +45,8 @@ std::string history_unit(const std::string& column) {
   for (const auto& s : kDamageColumns)
     if (column == s.name) return s.unit;
   auto ends = [&](const char* tail) { return column.ends_with(tail); };
-  if (ends(".work") || ends(".heat")) return "J";
+  if (ends(".work") || ends(".heat") || ends(".delivered")) return "J";
+  if (ends(".speed")) return "m/s";
   if (ends(".force") || ends(".fx") || ends(".fy") || ends(".fz")) return "N";
   if (ends(".stroke")) return "m";
   return "-";

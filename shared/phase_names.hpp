@@ -8,11 +8,11 @@ namespace rk {
 
 enum Phase {
   kReferenceUpdate, kCheckpoint, kDeformationGradient, kStressUpdate, kContact, kTimeStep, kHeatTransfer, kInternalForce,
-  kOverlapExchange, kVelocityUpdate, kConstraints, kBoundaryWork, kHistory, kOutput, kDisplacementUpdate, kPhaseCount
+  kOverlapExchange, kVelocityUpdate, kPress, kConstraints, kBoundaryWork, kHistory, kOutput, kDisplacementUpdate, kPhaseCount
 };
 inline constexpr std::array<const char*, kPhaseCount> kPhaseNames = {
     "reference_update", "checkpoint", "deformation_gradient", "stress_update", "contact",
-    "time_step", "heat_transfer", "internal_force", "overlap_exchange", "velocity_update", "constraints",
+    "time_step", "heat_transfer", "internal_force", "overlap_exchange", "velocity_update", "press", "constraints",
     "boundary_work", "history", "output", "displacement_update"};
 
 }  // namespace rk

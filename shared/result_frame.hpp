@@ -5,7 +5,8 @@
 // was computed on: a reader merges only its own case's frames). Datasets under frames/FFFFF/:
 // time (s), step, global_id, x (3 per particle: the material's current position X + u^h(X), m),
 // then kFrameFields, kThermalFields where the material has a temperature and kDamageFields where
-// the scene asks for damage.
+// the scene asks for damage; where a die is driven by its press (its stroke is no function of time),
+// die_stroke: every die's stroke along its direction (m).
 #pragma once
 #include <cstdint>
 #include <cstdio>

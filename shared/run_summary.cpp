@@ -16,7 +16,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(RunSummary, format, steps, time,
                                                 max_ebc_error_m, initial_kinetic_energy, viscous_work, mass_scaling,
                                                 max_kinetic_internal_ratio, reference_updates, frames, thermal_updates, thermal_step_s,
                                                 peak_memory_mb_max_rank, peak_bytes_per_point, resident_bytes_per_point,
-                                                phases, warnings)
+                                                phases, warnings, presses)
 
 void write_run_summary(const std::string& path, const RunSummary& summary) {
   std::ofstream out(path);

@@ -41,6 +41,7 @@ struct RunSummary {
   double peak_memory_mb_max_rank = 0, peak_bytes_per_point = 0, resident_bytes_per_point = 0;
   std::map<std::string, PhaseTime> phases;  // by the phase names of the step (shared/phase_names.hpp)
   std::vector<std::string> warnings;        // suspicious but legal, also printed by rksolve
+  std::vector<std::string> presses;         // how each die driven by its press ended (blows, energy, stroke)
 };
 
 void write_run_summary(const std::string& path, const RunSummary& summary);

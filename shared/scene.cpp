@@ -289,15 +289,40 @@ void apply_override(YAML::Node root, const Override& o, const std::string& file)
   }
 }
 
-// A prescribed motion (dies, prescribed faces): `direction` and a constant `speed`, or a piecewise-linear
-// `curve` of [time, stroke] pairs.
-DieMotion read_motion(Section& owner) {
+// A prescribed motion (dies, prescribed faces): `direction` and a constant `speed`, a piecewise-linear
+// `curve` of [time, stroke] pairs or a crank press; for a die (`press`) also a hammer's or screw
+// press's `blow` or a `hydraulic` press.
+DieMotion read_motion(Section& owner, bool press) {
   DieMotion motion;
   Section m = owner.section("motion", true);
   motion.direction = m.vec3("direction", std::nullopt, true);
   motion.curve = PiecewiseLinear(m.pairs("curve", "[time, stroke]", "the times"));
-  if (m.get("crank", false)) {  // a mechanical press
-    if (!motion.curve.empty()) throw Error(m.where_of("crank") + " and 'curve' exclude each other");
+  int kinds = 0;  // curve, crank, blow, hydraulic: one at most
+  for (const char* key : {"curve", "crank", "blow", "hydraulic"})
+    if (m.get(key, false)) {
+      if (!press && (std::string(key) == "blow" || std::string(key) == "hydraulic"))
+        throw Error(m.where_of(key) + ": a press drives dies only; a prescribed face follows a time law");
+      if (++kinds > 1) throw Error(m.where_of(key) + ": 'curve', 'crank', 'blow' and 'hydraulic' exclude each other");
+    }
+  if (m.get("blow", false)) {  // a hammer or screw press
+    motion.speed = m.number("speed", 0.0, {0, 0});
+    Section b = m.section("blow", true);
+    DieMotion::Ram& r = motion.ram;
+    r.energy = b.number("energy", std::nullopt, {0, 1e9, true, false});
+    r.mass = b.number("ram_mass", std::nullopt, {0, 1e7, true, false});
+    r.efficiency = b.number("efficiency", 1.0, {0, 1, true, false});
+    r.blows = b.integer("count", 1, 1, 1000);
+    b.done();
+  } else if (m.get("hydraulic", false)) {  // a hydraulic press: its speed, up to its force limit
+    motion.speed = m.number("speed", std::nullopt, {0, 1e4, true, false});
+    Section h = m.section("hydraulic", true);
+    DieMotion::Ram& r = motion.ram;
+    r.force_limit = h.number("force_limit", std::nullopt, {0, 1e12, true, false});
+    r.mass = h.number("ram_mass", std::nullopt, {0, 1e7, true, false});
+    r.power_limit = h.number("power_limit", 0.0, {0, 1e12});
+    r.stroke = h.number("stroke", 0.0, {0, 100});
+    h.done();
+  } else if (m.get("crank", false)) {  // a mechanical press
     motion.speed = m.number("speed", 0.0, {0, 0});
     Section c = m.section("crank", true);
     DieMotion::Crank& k = motion.crank;
@@ -557,7 +582,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     b.list("fixed_faces", [&](Section& p) { s.fixed_faces.push_back(face(p, "fixed", s.fixed_faces.size())); });
     b.list("prescribed_faces", [&](Section& p) {
       EssentialFace f = face(p, "prescribed", s.prescribed_faces.size());
-      f.motion = read_motion(p);
+      f.motion = read_motion(p, false);
       s.prescribed_faces.push_back(f);
     });
     b.list("rigid_walls", [&](Section& p) {
@@ -579,7 +604,14 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     die.unit = unit_length(d.text("unit", "m", {"m", "mm", "cm", "in"}));
     die.friction = d.number("friction", 0.0, {0, 10});
     die.shear_factor = d.number("shear_factor", 0.0, {0, 1});
-    die.motion = read_motion(d);
+    die.motion = read_motion(d, true);
+    // A ram's mass meets the whole part's reaction; a symmetry plane across its motion would halve
+    // the travel it sees (the modeled die moves half the ram's stroke)
+    for (const auto& pl : planes)
+      if (die.motion.driven() && std::abs(dot(pl.normal, die.motion.direction)) > 1e-9)
+        throw Error(where(name, d.get("name", false), "dies") + ": die '" + die.name +
+                    "' is driven by its press; a symmetry plane across its motion cannot model it: model the full "
+                    "height on a rigid wall or a second die");
     // Full part / modeled part: each symmetry plane whose normal is normal to the motion mirrors the
     // die force; two orthogonal such planes make a quarter (x4). Other sectors must say it. (Normal:
     // a dot product of unit vectors under 1e-9, their round-off.)
@@ -786,6 +818,7 @@ double DieMotion::Crank::bottom_dead_centre() const { return (M_PI - start_angle
 
 double DieMotion::fastest() const {
   double v = std::abs(speed);
+  if (blows()) v = std::max(v, ram.blow_speed());
   for (const auto& [t, s] : curve.points()) v = std::max(v, std::abs(rate(t)));
   if (cranked())  // |ds/dtheta| <= r (1 + r / l) (the rod's term at most r/l of the crank's); times omega
     v = std::max(v, crank.radius * (1 + crank.radius / crank.rod) * crank.omega());

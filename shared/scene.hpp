@@ -42,7 +42,23 @@ struct DieMotion {
     double bottom_dead_centre() const;    // the time theta reaches pi
   } crank;
   bool cranked() const { return crank.radius > 0; }
-  double stroke(double t) const;                  // m along `direction`
+  // A die driven by its press's energy or force rather than by time (solver/contact/presses.hpp): the
+  // ram, of `mass` (kg: ram and upper die), moves under the press's drive and the part's reaction.
+  struct Ram {
+    double mass = 0;
+    // hammer or screw press: `blows` blows in a row, each bringing `efficiency` x `energy` (J) to the
+    // part: the ram meets it at v0 = sqrt(2 efficiency energy / mass) and coasts until it stops
+    double energy = 0, efficiency = 1;
+    int blows = 0;
+    // hydraulic press: the motion's `speed` until the load on the whole part reaches `force_limit` (N);
+    // at most `power_limit` (W, 0: none); it stops at `stroke` (m, 0: none)
+    double force_limit = 0, power_limit = 0, stroke = 0;
+    double blow_speed() const { return std::sqrt(2 * efficiency * energy / mass); }  // v0 (m/s)
+  } ram;
+  bool blows() const { return ram.blows > 0; }
+  bool hydraulic() const { return ram.force_limit > 0; }
+  bool driven() const { return blows() || hydraulic(); }  // by the part's reaction: stroke(t) and rate(t) do not apply
+  double stroke(double t) const;                  // m along `direction` (a motion not driven())
   double rate(double t) const;                    // d stroke / dt
   double fastest() const;                         // the largest |rate| over the motion (m/s)
 };

@@ -12,6 +12,7 @@
 
 #include "boundary/essential_bc.hpp"
 #include "contact/die_contact.hpp"
+#include "contact/presses.hpp"
 #include "energy.hpp"
 #include "error.hpp"
 #include "health.hpp"
@@ -68,6 +69,7 @@ class Simulation {
   void heat_transfer();
   void internal_force();
   void velocity_update(double dt_avg);
+  void press(double dt_avg);
   void constraints(double dt, double dt_avg);
   void boundary_work(double dt_avg);
   bool history_due(bool last) const;
@@ -76,6 +78,7 @@ class Simulation {
   void output();
   void displacement_update(double dt);
 
+  void start_presses(double h_min);
   void rebind();  // after a reference update: what is sized by the rank's local particles
   void write_frame(const std::vector<double>& velocity);
 
@@ -88,6 +91,7 @@ class Simulation {
   RunClock clock_;
   std::unique_ptr<EssentialBcs> ebc_;
   std::unique_ptr<DieContact> dies_;
+  std::unique_ptr<Presses> presses_;    // with dies driven by their press only
   std::unique_ptr<HeatTransfer> heat_;  // with conduction only
   std::unique_ptr<ResultWriter> results_;
   std::unique_ptr<History> history_;
@@ -116,8 +120,8 @@ class Simulation {
 void Simulation::run() {
   for (;;) {
     timer_.start();
-    // the end within 1e-12 of it: the round-off of the summed steps
-    const bool last = st_.t >= scene_.time.end * (1 - 1e-12);
+    // the end within 1e-12 of it (the round-off of the summed steps), or every ram at rest
+    const bool last = st_.t >= scene_.time.end * (1 - 1e-12) || (presses_ && presses_->stopped(st_));
     if (update_due()) reference_update();       // the current configuration becomes the reference
     if (checkpoint_due(last)) checkpoint();     // t^n, v^{n-1/2}
     if (limits_.interrupted) stop_on_interrupt();  // a rank was interrupted: every rank stops here
@@ -131,6 +135,7 @@ void Simulation::run() {
     if (heat_due(dt, last)) heat_transfer();    // conduction and surface heat from the last update to t^n
     internal_force();                           // f = sum_g w_g P_g grad_X N_I - f_contact, overlap summed
     velocity_update(dt_avg);                    // v^{n+1/2} = v^{n-1/2} + dt_avg (g - f / m)
+    if (presses_) press(dt_avg);                // the rams' v^{n+1/2} from the part's reaction
     constraints(dt, dt_avg);                    // the essential BCs at t^{n+1}
     boundary_work(dt_avg);                      // the contact's and the body force's work over the step
     if (history_due(last)) history(dt, last);   // a history row at t^n, its health checks
@@ -192,7 +197,8 @@ void Simulation::stress_update() {
 }
 
 void Simulation::contact() {
-  contact_bound_ = dies_->compute(md_, st_, st_.t, clock_.dt_stable);
+  if (presses_) presses_->place(st_, *dies_, false);  // the rams at s^n, v^{n-1/2}
+  contact_bound_ = dies_->compute(md_, st_, st_.t, clock_.dt_stable, clock_.dt_penalty);
   timer_.stop(kContact);
 }
 
@@ -213,6 +219,7 @@ void Simulation::time_step() {
   limits_.symmetry_depth = dies_->symmetry_depth() / health_->scales().h_min;
   limits_.pressure_ratio = stress_.pressure_ratio;
   limits_.interrupted = g_interrupted != 0;
+  limits_.reaction_bound = presses_ ? presses_->reaction_bound(*dies_) : 0.0;
   limits_.reduce(comm_);
   clock_.max_pressure_ratio = std::max(clock_.max_pressure_ratio, limits_.pressure_ratio);
   timer_.stop(kTimeStep);
@@ -227,6 +234,7 @@ void Simulation::check_health() const {
 double Simulation::step_size(bool last) {
   double dt = limits_.dt;
   clock_.dt_stable = dt;
+  clock_.dt_penalty = std::min(clock_.dt_penalty, dt);
   if (!last) {
     const double out_dt = scene_.time.output_interval;
     dt = std::min(dt, scene_.time.end - st_.t);
@@ -269,6 +277,12 @@ void Simulation::velocity_update(double dt_avg) {
   for (std::size_t I = 0; I < md_.n; ++I)
     for (int i = 0; i < 3; ++i) st_.v[3 * I + i] += dt_avg * (g[i] - st_.force[3 * I + i] / md_.mass[I]);
   timer_.stop(kVelocityUpdate);
+}
+
+void Simulation::press(double dt_avg) {
+  presses_->advance(st_, *dies_, limits_.reaction_bound, dt_avg, comm_);
+  presses_->place(st_, *dies_, true);  // the step's mean speed, for the work
+  timer_.stop(kPress);
 }
 
 void Simulation::constraints(double dt, double dt_avg) {
@@ -325,6 +339,7 @@ void Simulation::output() {
 
 void Simulation::displacement_update(double dt) {
   for (std::size_t k = 0; k < st_.u.size(); ++k) st_.u[k] += dt * st_.v[k];
+  if (presses_) presses_->move(st_, dt);
   st_.t += dt;
   st_.dt_half = dt;
   ++st_.step;
@@ -333,7 +348,9 @@ void Simulation::displacement_update(double dt) {
 
 // Output is collective; a failure on any rank (disk full, unwritable directory) stops every rank.
 void Simulation::write_frame(const std::vector<double>& velocity) {
-  collectively(comm_, [&] { return results_->write_frame(md_, st_, velocity, comm_), 0; });
+  std::vector<double> die_stroke;  // where a press drives a die, rkpost finds its stroke in the frame
+  for (std::size_t k = 0; presses_ && k < dies_->size(); ++k) die_stroke.push_back(dies_->stroke(k, st_.t));
+  collectively(comm_, [&] { return results_->write_frame(md_, st_, velocity, comm_, die_stroke), 0; });
 }
 
 void Simulation::rebind() {
@@ -395,7 +412,8 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   ebc_ = collectively(comm, [&] { return std::make_unique<EssentialBcs>(md_, scene_, comm); });
   ebc_->apply(md_, st_, 0.0, 0.0, 0.0, st_.v);  // initial velocities that meet the conditions' rates
   dies_ = std::make_unique<DieContact>(md_, scene_, md_.dies);
-  clock_.dt_stable = dt0;  // the last unclipped global stable step: sets the penalty stiffness
+  clock_.dt_stable = dt0;  // the last unclipped global stable step: the stick force's step
+  clock_.dt_penalty = dt0;  // and the smallest so far: the penalty stiffness
   clock_.kinetic0 = compute_energies(md_, st_, st_.v, comm).kinetic;
   if (opt.restart) {
     const std::string path = restart_checkpoint(opt.case_dir, comm);
@@ -439,6 +457,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   health_ = std::make_unique<HealthChecks>(scene_, scales);
   // rho c_L v_max at the density the run uses: mass scaling raises a tool's starting pressure with it
   pressure_bound_ = {std::sqrt(md_.density * md_.wave_modulus) * scales.v_start, scene_.health.max_pressure_ratio};
+  start_presses(scales.h_min);
 
   last_checkpoint_wall_ = comm.wtime();
   setup_s_ = comm.wtime() - wall0_;
@@ -452,6 +471,35 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   std::signal(SIGTERM, request_stop);
 }
 
+// The dies driven by their press: their rams at rest at stroke 0 (or the checkpoint's), each heavy
+// enough for the penalty contact: a ram of modeled mass M / force_factor against slaves of mass sum m
+// in contact, k = s m / dt^2 each, is stable while M / force_factor > s sum m / 4; the slaves
+// (particles and points) hold at most twice the part's mass, so M / force_factor >= s x the part's
+// mass (mass-scaled) keeps a margin of 2.
+void Simulation::start_presses(double h_min) {
+  std::size_t rams = 0;
+  for (const Die& d : scene_.dies) rams += d.motion.driven() ? 1 : 0;
+  if (rams == 0) return;
+  presses_ = std::make_unique<Presses>(scene_, h_min, double(dies_->terms()), comm_);
+  double part_mass = 0;
+  for (std::size_t I = 0; I < md_.n; ++I)
+    if (md_.owned[I]) part_mass += md_.mass[I];
+  comm_.sum(&part_mass, 1);
+  for (const Die& d : scene_.dies) {
+    const double least = scene_.contact.penalty_scale * part_mass * d.force_factor;
+    if (!d.motion.driven() || d.motion.ram.mass >= least) continue;
+    char text[300];
+    std::snprintf(text, sizeof text, "die '%s': a ram_mass of %.4g kg is too light for the penalty contact against the part "
+                  "(%.4g kg%s): give at least %.4g kg", d.name.c_str(), d.motion.ram.mass, part_mass * d.force_factor,
+                  md_.mass_scaling > 1 ? " mass-scaled; or lower time.mass_scaling_dt" : "", least);
+    throw Error(text);
+  }
+  if (opt_.restart)
+    comm_.check(st_.rams.size() == rams, "the checkpoint holds no press state for this scene's rams; re-run from the start");
+  else presses_->start(st_);
+  presses_->place(st_, *dies_, false);
+}
+
 // solve.json (io/run_report.hpp) and the closing line
 void Simulation::finish() {
   RunCounts counts;
@@ -459,6 +507,11 @@ void Simulation::finish() {
   counts.plastic_updates = plastic_updates_, counts.point_updates = point_updates_;
   counts.max_ebc_error = max_ebc_error_, counts.impact_pressure = pressure_bound_.impact;
   counts.frames = results_->frames();
+  if (presses_) {
+    counts.presses = presses_->outcome(st_, scene_.dies);
+    for (std::size_t r = 0; r < counts.presses.size(); ++r)
+      if (presses_->stalled(st_, r)) counts.press_warnings.push_back(counts.presses[r]);
+  }
   const RunSummary s = write_run_report(opt_.case_dir, scene_, md_, st_, clock_, *dies_, *ebc_, timer_, counts, comm_);
   progress_->done(st_.step, s.wall_s, s.ns_per_point_update, clock_.last_error);
 }

@@ -70,6 +70,16 @@ struct State {
   std::vector<double> damage;
   double thermal_work = 0;
   std::int64_t contacts = 0;
+  // the rams of the dies driven by their press (contact/presses.hpp), in die order; the same on every rank
+  struct Ram {
+    double stroke = 0, speed = 0;  // s^n (m) and v^{n-1/2} (m/s) along the die's direction
+    double delivered = 0;          // energy delivered to the whole part (J)
+    double blows = 0;              // blows begun (a hammer or screw press)
+    double stopped = 0;            // 1: at rest for good
+    double since_t = 0, since_s = 0;  // a hydraulic press's stall window: its start time and stroke
+  };
+  static constexpr std::size_t kRamValues = 7;  // the doubles of a Ram (its checkpoint row)
+  std::vector<Ram> rams;
 
   // v_I = velocity + gradient X_I (gradient row-major: d v_i / d X_j)
   static State initial(const Model& md, const double velocity[3], const double gradient[9]);

@@ -15,14 +15,16 @@ struct StepLimits {
   double symmetry_depth = 0;      // material past a symmetry plane, in smallest spacings
   double pressure_ratio = 0;      // largest |p| / (rho0 c_L v_max + sigma_y)
   bool interrupted = false;       // a rank received SIGINT or SIGTERM
+  double reaction_bound = 0;      // the largest contribution to a press-driven die's reaction (its fixed-point scale)
 
   // Collective: the limits of all ranks, in one reduction.
   void reduce(const Comm& comm) {
-    double r[8] = {-dt, force_bound, unhealthy ? 1.0 : 0.0, checkpoint_clock ? 1.0 : 0.0, strain_since_update,
-                   symmetry_depth, pressure_ratio, interrupted ? 1.0 : 0.0};
-    comm.max(r, 8);
+    double r[9] = {-dt, force_bound, unhealthy ? 1.0 : 0.0, checkpoint_clock ? 1.0 : 0.0, strain_since_update,
+                   symmetry_depth, pressure_ratio, interrupted ? 1.0 : 0.0, reaction_bound};
+    comm.max(r, 9);
     dt = -r[0], force_bound = r[1], unhealthy = r[2] > 0, checkpoint_clock = r[3] > 0;
     strain_since_update = r[4], symmetry_depth = r[5], pressure_ratio = r[6], interrupted = r[7] > 0;
+    reaction_bound = r[8];
   }
 };
 

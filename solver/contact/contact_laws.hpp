@@ -1,8 +1,11 @@
 // The pointwise contact laws, apart from the obstacle search and the loops over slaves
 // (die_contact.cpp): for one slave in contact, the force the rigid obstacle puts on it.
 // - Normal: penalty on the penetration depth d, f_n = k d along the obstacle's normal n (toward the
-//   material), k = s m / dt^2 with m the slave's mass and dt the last unclipped global stable step:
-//   tied to the step, so contact never shrinks it (s <= 1). The spring stores k d^2 / 2.
+//   material), k = s m / dt_min^2 with m the slave's mass and dt_min the smallest unclipped global
+//   stable step so far: tied to the step, so contact never shrinks it (s <= 1), and never softening,
+//   so a stiffness that follows the step's ringing does not pump energy into a ringing contact; at
+//   most m / dt^2 (sqrt(k/m) dt <= 1, half the spring's stability limit) where the step grew back.
+//   The spring stores k d^2 / 2.
 // - Tangential: Coulomb friction. The stick force f_s is the force that stops the relative
 //   tangential velocity v_t in one step (m |v_t| / dt, the caller's share of it); the slave sticks
 //   when f_s <= mu f_n and slips with mu f_n otherwise, always against v_t.
@@ -15,8 +18,10 @@
 
 namespace rk {
 
-// k = s m / dt^2 (N/m)
-inline double penalty_stiffness(double penalty_scale, double mass, double dt) { return penalty_scale * mass / (dt * dt); }
+// k = min(s m / dt_min^2, m / dt^2) (N/m)
+inline double penalty_stiffness(double penalty_scale, double mass, double dt_min, double dt) {
+  return std::min(penalty_scale * mass / (dt_min * dt_min), mass / (dt * dt));
+}
 
 // f = k d n: the normal force of a penalty spring of stiffness k compressed by depth d >= 0
 inline void penalty_force(double k, double depth, const double normal[3], double f[3]) {

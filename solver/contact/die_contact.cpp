@@ -91,6 +91,7 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
     face_clearance_.assign(faces * dies_.size(), 0.0);  // 0: looked up at the first step
   }
   die_moved_.assign(dies_.size(), 0.0);
+  driven_.assign(2 * dies_.size(), 0.0);
   for (const auto& sf : surfaces_) {
     double b[6] = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
     for (std::size_t v = 0; v < sf.vertices.size() / 3; ++v)
@@ -121,7 +122,7 @@ void DieContact::material_value(const Model& md, const std::vector<double>& a, s
     for (int i = 0; i < 3; ++i) out[i] += r.N[k] * a[3 * std::size_t(r.cols[k]) + i];
 }
 
-double DieContact::compute(const Model& md, const State& st, double t, double dt) {
+double DieContact::compute(const Model& md, const State& st, double t, double dt, double dt_min) {
   active_.clear();
   if (empty()) return 0;
   // How far any local coefficient moved since the last call: a slave moved at most sum_J |N_J| times that.
@@ -149,7 +150,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
   for (std::size_t k = 0; k < dies_.size() + planes_.size(); ++k) {
     const bool die = k < dies_.size();
     const DieMotion* mo = die ? &dies_[k].motion : nullptr;
-    const double stroke = die ? mo->stroke(t) : 0.0, rate = die ? mo->rate(t) : 0.0;
+    const double stroke = die ? this->stroke(k, t) : 0.0, rate = die ? this->rate(k, t) : 0.0;
     const double die_moved = die ? std::abs(stroke - stroke_last_[k]) : 0.0;
     if (die) stroke_last_[k] = stroke, die_moved_[k] = die_moved;
     // Coulomb at the slaves; with a shear factor the faces take the friction (face_friction)
@@ -180,7 +181,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
       c = hit.found ? std::max(hit.gap, 0.0) : margin;
       if (!hit.found || hit.gap >= 0) continue;
       const double depth = -hit.gap, m = mass_[s];
-      const double kI = penalty_stiffness(penalty_scale_, m, dt);
+      const double kI = penalty_stiffness(penalty_scale_, m, dt_min, dt);
       Active a{std::int32_t(s), std::int32_t(k), {}, {}};
       penalty_force(kI, depth, hit.normal, a.normal_force);
       double v_rel[3], vt[3];  // the material's velocity relative to the obstacle
@@ -224,7 +225,7 @@ void DieContact::face_friction(const Model& md, const State& st, double t, doubl
     for (std::size_t k = 0; k < dies_.size(); ++k) {
       const Die& die = dies_[k];
       if (!(die.shear_factor > 0)) continue;
-      const double rate = die.motion.rate(t), touch = kFaceTouch * std::sqrt(area);
+      const double rate = this->rate(k, t), touch = kFaceTouch * std::sqrt(area);
       double& clear = face_clearance_[k * faces + f];
       clear -= face_N_sum_[f] * moved_ + die_moved_[k];
       if (clear > touch) continue;  // still farther than its touch distance: no lookup
@@ -265,7 +266,7 @@ void DieContact::face_friction(const Model& md, const State& st, double t, doubl
 }
 
 DieHit DieContact::die_hit(std::size_t k, const double x[3], double t) const {
-  const double stroke = dies_[k].motion.stroke(t);
+  const double stroke = this->stroke(k, t);
   double y[3];  // in the die's own frame
   for (int i = 0; i < 3; ++i) y[i] = x[i] - stroke * dies_[k].motion.direction[i];
   return search_[k]->nearest(y);
@@ -282,6 +283,30 @@ int DieContact::touching(const double x[3], double t, double tolerance) const {
     if (gap < tolerance) return -2;
   }
   return -1;
+}
+
+double DieContact::reaction_bound(std::size_t k) const {
+  const double* d = dies_[k].motion.direction.data();
+  double largest = 0;
+  for (const auto& a : active_)
+    if (std::size_t(a.obstacle) == k)
+      largest = std::max(largest, std::abs((a.normal_force[0] + a.friction_force[0]) * d[0] + (a.normal_force[1] + a.friction_force[1]) * d[1] +
+                                           (a.normal_force[2] + a.friction_force[2]) * d[2]));
+  for (const auto& ff : face_active_)
+    if (std::size_t(ff.die) == k) largest = std::max(largest, std::abs(ff.force[0] * d[0] + ff.force[1] * d[1] + ff.force[2] * d[2]));
+  return largest;
+}
+
+Fixed DieContact::reaction(std::size_t k, const FixedScale& scale) const {
+  const double* d = dies_[k].motion.direction.data();
+  Fixed sum = 0;
+  for (const auto& a : active_)
+    if (std::size_t(a.obstacle) == k)
+      sum += scale.fixed((a.normal_force[0] + a.friction_force[0]) * d[0] + (a.normal_force[1] + a.friction_force[1]) * d[1] +
+                         (a.normal_force[2] + a.friction_force[2]) * d[2]);
+  for (const auto& ff : face_active_)
+    if (std::size_t(ff.die) == k) sum += scale.fixed(ff.force[0] * d[0] + ff.force[1] * d[1] + ff.force[2] * d[2]);
+  return sum;
 }
 
 double DieContact::symmetry_depth() const { return planes_.size() > walls_ ? totals_.back().max_penetration : 0.0; }
@@ -306,7 +331,7 @@ double DieContact::wall_force(std::size_t w) const {
 void DieContact::box(const double part_lo[3], const double part_hi[3], double t, double lo[3], double hi[3]) const {
   for (int d = 0; d < 3; ++d) lo[d] = part_lo[d], hi[d] = part_hi[d];
   for (std::size_t k = 0; k < dies_.size(); ++k) {
-    const double shift = dies_[k].motion.stroke(t);
+    const double shift = stroke(k, t);
     for (int d = 0; d < 3; ++d) {
       lo[d] = std::min(lo[d], die_box_[6 * k + d] + shift * dies_[k].motion.direction[d]);
       hi[d] = std::max(hi[d], die_box_[6 * k + 3 + d] + shift * dies_[k].motion.direction[d]);
@@ -335,7 +360,7 @@ void DieContact::account(const Model& md, State& st, const std::vector<double>& 
   const bool conducting = !st.surface_heat.empty();
   for (const auto& a : active_) {
     const bool die = std::size_t(a.obstacle) < dies_.size();
-    const double rate = die ? dies_[a.obstacle].motion.rate(t) : 0.0;
+    const double rate = die ? this->rate(std::size_t(a.obstacle), t) : 0.0;
     const double* direction = die ? dies_[a.obstacle].motion.direction.data() : nullptr;
     DieTotals& tot = totals_[die ? std::size_t(a.obstacle) : planes_[std::size_t(a.obstacle) - dies_.size()].total];
     double before[3], after[3];
@@ -367,7 +392,7 @@ void DieContact::account(const Model& md, State& st, const std::vector<double>& 
     face_velocity(md, v_old, std::size_t(ff.face), before);
     face_velocity(md, st.v, std::size_t(ff.face), after);
     for (int i = 0; i < 3; ++i) {
-      const double vbar = 0.5 * (before[i] + after[i]), die_v = die.motion.rate(t) * die.motion.direction[i];
+      const double vbar = 0.5 * (before[i] + after[i]), die_v = rate(std::size_t(ff.die), t) * die.motion.direction[i];
       totals_[std::size_t(ff.die)].contact_work += dt_avg * ff.force[i] * vbar;
       totals_[std::size_t(ff.die)].press_work += dt_avg * ff.force[i] * die_v;
       friction -= dt_avg * ff.force[i] * (vbar - die_v);

@@ -8,8 +8,8 @@
 // Rigid walls and symmetry planes are frictionless fixed planes for the same slaves, except that the
 // particles (and nodal points) lying on a symmetry plane are left to the essential BCs, which hold
 // them there both ways; a symmetry plane's normal points to the side of the rank's particles.
-// The pointwise laws are in contact/contact_laws.hpp: penalty k = s m / dt^2 (m the particle's mass or
-// the point's rho w_g, dt the last stable step, so contact never shortens it) and Coulomb friction
+// The pointwise laws are in contact/contact_laws.hpp: penalty k = s m / dt_min^2 (m the particle's mass
+// or the point's rho w_g, dt_min the smallest stable step so far, so contact never shortens it) and Coulomb friction
 // with a stick force that stops the sliding in one step; a point's stick force stops half of it.
 // A slave is looked up only when its clearance at its last lookup, less how far it and the die may
 // have moved since, may have run out. Computed by each particle's and each point's OWNER only; the
@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "die_search.hpp"
+#include "parallel/fixed_point.hpp"
 #include "model.hpp"
 #include "scene.hpp"
 #include "state.hpp"
@@ -44,9 +45,9 @@ class DieContact {
   bool empty() const { return dies_.empty() && planes_.empty(); }  // nothing to meet
 
   // Contact forces at time t from the positions and the velocities v^{n-1/2}; dt is the previous
-  // (global) step. Adds -f_c to the fixed-point partials (after compute and the bound reduction).
+  // (global) step, dt_min the smallest so far (contact_laws.hpp). Adds -f_c to the fixed-point partials (after compute and the bound reduction).
   // Returns the largest force contribution to one particle, for the fixed-point bound.
-  double compute(const Model& md, const State& st, double t, double dt);
+  double compute(const Model& md, const State& st, double t, double dt, double dt_min);
   void add_to(const Model& md, State& st, const FixedScale& scale) const;
   // After the velocity update: the work of this step's contact forces with vbar. With heat
   // conduction, the friction's heat is shared between the die (its `heat`) and the part: at a point
@@ -72,6 +73,17 @@ class DieContact {
   std::vector<DieTotals>& totals() { return totals_; }  // restored from a checkpoint
   const Die& die(std::size_t k) const { return dies_[k]; }
   std::size_t size() const { return dies_.size(); }  // the dies (totals()[0 .. size()))
+  // Die k's stroke and its rate at time t: its motion's, or for a die driven by its press what
+  // Presses last told drive().
+  double stroke(std::size_t k, double t) const { return dies_[k].motion.driven() ? driven_[2 * k] : dies_[k].motion.stroke(t); }
+  double rate(std::size_t k, double t) const { return dies_[k].motion.driven() ? driven_[2 * k + 1] : dies_[k].motion.rate(t); }
+  void drive(std::size_t k, double stroke, double rate) { driven_[2 * k] = stroke, driven_[2 * k + 1] = rate; }
+  // This step's force of die k on the part along its direction: the largest single contribution, and
+  // their sum in fixed point (the same on every partition).
+  double reaction_bound(std::size_t k) const;
+  Fixed reaction(std::size_t k, const FixedScale& scale) const;
+  // This rank's contact terms that may push a die (particle and point slaves, boundary faces with friction)
+  std::size_t terms() const { return mass_.size() + face_mass_.size(); }
   // The force of rigid wall w on the part along the wall's normal, this step (totals()[size() + w]).
   double wall_force(std::size_t w) const;
   // How deep this rank's material is past a symmetry plane this step (m), and the local particle
@@ -134,6 +146,7 @@ class DieContact {
   bool shear_ = false;                     // a die has shear_factor > 0
   std::vector<DieTotals> totals_;
   std::vector<double> die_box_;  // per die at t = 0: lo[3], hi[3]
+  std::vector<double> driven_;   // per die: the stroke and rate a press set (drive)
   double penalty_scale_, margin_ = 0;
 };
 

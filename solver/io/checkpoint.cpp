@@ -18,7 +18,14 @@ std::string checkpoint_path(const std::string& case_dir, int rank) {
 
 namespace {
 
-constexpr std::size_t kClockScalars = 14;  // the run clock's doubles (write_temporary lists them)
+constexpr std::size_t kClockScalars = 15;  // the run clock's doubles (write_temporary lists them)
+
+std::vector<double> ram_rows(const State& st) {  // State::Ram's fields, a row per ram
+  std::vector<double> rows;
+  for (const State::Ram& r : st.rams)
+    rows.insert(rows.end(), {r.stroke, r.speed, r.delivered, r.blows, r.stopped, r.since_t, r.since_s});
+  return rows;
+}
 
 void write_temporary(const std::string& tmp, const Model& md, const State& st, const RunClock& c,
                      const std::vector<DieTotals>& dies) {
@@ -30,11 +37,12 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     f.set_attr("format", kCheckpointFormat);
     f.write("clock/scalars", std::vector<double>{st.t, st.dt_half, c.max_error, st.external_work, c.next_output,
                                                  c.next_history, c.dt_stable, c.kinetic0, c.last_error, c.max_ke_ratio,
-                                                 st.update_work, st.viscous_work, c.max_pressure_ratio, st.thermal_work});
+                                                 st.update_work, st.viscous_work, c.max_pressure_ratio, st.thermal_work, c.dt_penalty});
     f.write("clock/integers", std::vector<std::int64_t>{st.step, c.frames, std::int64_t(dies.size())});
     std::vector<double> die_work;
     for (const auto& d : dies) die_work.insert(die_work.end(), {d.press_work, d.friction_work, d.contact_work});
     f.write("dies/work", die_work, 3);
+    if (!st.rams.empty()) f.write("dies/rams", ram_rows(st), State::kRamValues);
     f.set_attr("reference_updates", st.reference_updates);
     f.write("particles/global_id", md.global_id);
     f.write("particles/u", st.u, 3);
@@ -77,6 +85,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
                check.read<double>("particles/v", 3) == st.v && check.read<double>("points/cp_inv", 6) == st.cp_inv &&
                check.read<double>("points/ep") == st.ep && check.read<double>("points/wp") == st.wp &&
                (st.q.empty() || (check.read<double>("points/q") == st.q && check.read<double>("points/J_last") == st.J_last)) &&
+               (st.rams.empty() || check.read<double>("dies/rams", State::kRamValues) == ram_rows(st)) &&
                (st.temperature.empty() || check.read<double>("points/temperature") == st.temperature) &&
                (st.stretch_last.empty() || check.read<double>("points/stretch_last") == st.stretch_last) &&
                (st.damage.empty() || check.read<double>("points/damage", 2) == st.damage) &&
@@ -165,11 +174,19 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
   st.t = s[0], st.dt_half = s[1], c.max_error = s[2], st.external_work = s[3];
   c.next_output = s[4], c.next_history = s[5], c.dt_stable = s[6], c.kinetic0 = s[7], c.last_error = s[8],
   c.max_ke_ratio = s[9], st.update_work = s[10], st.viscous_work = s[11];
-  c.max_pressure_ratio = s[12], st.thermal_work = s[13];
+  c.max_pressure_ratio = s[12], st.thermal_work = s[13], c.dt_penalty = s[14];
   st.step = i[0], c.frames = i[1];
   const auto work = f.read<double>("dies/work", 3);
   for (std::size_t k = 0; k < dies.size(); ++k)
     dies[k].press_work = work[3 * k], dies[k].friction_work = work[3 * k + 1], dies[k].contact_work = work[3 * k + 2];
+  if (f.exists("dies/rams")) {  // the rams of the dies driven by their press
+    const auto rows = f.read<double>("dies/rams", State::kRamValues);
+    st.rams.resize(rows.size() / State::kRamValues);
+    for (std::size_t r = 0; r < st.rams.size(); ++r) {
+      const double* v = &rows[State::kRamValues * r];
+      st.rams[r] = {v[0], v[1], v[2], v[3], v[4], v[5], v[6]};
+    }
+  }
   st.cp_inv = f.read<double>("points/cp_inv", 6);
   st.ep = f.read<double>("points/ep");
   st.wp = f.read<double>("points/wp");

@@ -129,15 +129,17 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
   if (conducting) row_[c++] = s.ambient_heat;
   if (!st.damage.empty()) row_[c++] = worst[5], row_[c++] = worst[6];
   for (std::size_t w = 0; w < walls; ++w) row_[c++] = sums_[kSumCount + w];
+  std::size_t ram = 0;  // the press-driven dies' rams, in die order
   for (std::size_t d = 0; d < dies.size(); ++d) {
     const Die& die = dies.die(d);
     const double* f = &sums_[die0 + kPerDie * d];
-    row_[c++] = die.motion.stroke(st.t);
+    row_[c++] = dies.stroke(d, st.t);
     row_[c++] = die.force_factor * (f[0] * die.motion.direction[0] + f[1] * die.motion.direction[1] +
                                     f[2] * die.motion.direction[2]);
     row_[c++] = f[0], row_[c++] = f[1], row_[c++] = f[2];
     row_[c++] = f[3];
     if (conducting) row_[c++] = f[4];
+    if (die.motion.driven()) row_[c++] = dies.rate(d, st.t), row_[c++] = st.rams[ram++].delivered;  // vbar over the step
   }
   const std::size_t fixed = scene_.fixed_faces.size();
   for (std::size_t f = 0; f < fixed + scene_.prescribed_faces.size(); ++f) {

@@ -58,7 +58,7 @@ ResultWriter::ResultWriter(const std::string& case_dir, const Model& md, const s
 }
 
 void ResultWriter::write_frame(const Model& md, const State& st, const std::vector<double>& velocity,
-                               const Comm& comm) {
+                               const Comm& comm, const std::vector<double>& die_stroke) {
   // Particle values of point quantities: the average q_I = sum_g a_gI q_g / sum_g a_gI over the points
   // whose supports hold the particle, a_gI = w_g max(N_I(X_g), 0): positive weights, so a particle's
   // value lies within its points' (a plastic strain is never negative, a von Mises stress never above
@@ -144,6 +144,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     f.write(g + "step", std::vector<std::int64_t>{st.step});
     f.write(g + "global_id", gid);
     f.write(g + "x", x, 3);
+    if (!die_stroke.empty()) f.write(g + "die_stroke", die_stroke);
     const std::vector<double>* fields[] = {&u, &v, &ep, &vm, &pr, &sigma};  // in kFrameFields' order
     static_assert(std::size(fields) == std::size(kFrameFields));
     for (std::size_t k = 0; k < std::size(fields); ++k)

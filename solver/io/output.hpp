@@ -24,8 +24,10 @@ class ResultWriter {
   // the frames written after its checkpoint). Each frame carries the scene hash of the subdomains it
   // was computed on (rkpost merges only its own case's frames).
   ResultWriter(const std::string& case_dir, const Model& md, const std::string& scene_hash, std::int64_t resume_frames = -1);
-  // Collective (the particle values of point quantities need the overlap exchange).
-  void write_frame(const Model& md, const State& st, const std::vector<double>& velocity, const Comm& comm);
+  // Collective (the particle values of point quantities need the overlap exchange). `die_stroke`: each
+  // die's stroke, written where a die is driven by its press (empty: none to write).
+  void write_frame(const Model& md, const State& st, const std::vector<double>& velocity, const Comm& comm,
+                   const std::vector<double>& die_stroke);
   int frames() const { return frames_; }
 
  private:

@@ -4,6 +4,8 @@
 // the end of the run. Rank 0 writes it and prints the warnings.
 #pragma once
 #include <string>
+#include <vector>
+#include <string>
 
 #include "boundary/essential_bc.hpp"
 #include "contact/die_contact.hpp"
@@ -25,6 +27,8 @@ struct RunCounts {
   double max_ebc_error = 0;       // the essential BCs' largest violation seen (m)
   double impact_pressure = 0;     // rho0 c_L v_max (Pa)
   std::int64_t frames = 0;
+  std::vector<std::string> presses;         // how each press-driven die ended (the same on every rank)
+  std::vector<std::string> press_warnings;  // those that stalled short of their stroke
 };
 
 // Collective; returns the summary (complete on rank 0) after writing it to CASE/solve.json.

@@ -4,6 +4,7 @@
 #pragma once
 #include <mpi.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,7 @@ class Comm {
   int size() const { return size_; }
   void max(double* values, int count) const;  // in place, over all ranks
   void sum(double* values, int count) const;
+  void sum(std::int64_t* values, int count) const;  // exact: integers (fixed-point sums)
   void min(double* values, int count) const;
   // Every rank's `mine`, concatenated in rank order, on every rank (set-up only).
   std::vector<double> gather_all(const std::vector<double>& mine) const;

@@ -14,8 +14,11 @@
 namespace {
 
 TEST(ContactLaws, PenaltyIsKTimesDepthAlongTheNormal) {
-  const double k = rk::penalty_stiffness(0.5, 2e-3, 1e-7);
+  const double k = rk::penalty_stiffness(0.5, 2e-3, 1e-7, 1e-7);
   EXPECT_DOUBLE_EQ(k, 0.5 * 2e-3 / 1e-14);
+  // from the smallest step so far, however the step moved since; at most m / dt^2
+  EXPECT_DOUBLE_EQ(rk::penalty_stiffness(0.5, 2e-3, 1e-7, 1.2e-7), k);
+  EXPECT_DOUBLE_EQ(rk::penalty_stiffness(0.5, 2e-3, 1e-7, 2e-7), 2e-3 / 4e-14);
   const double n[3] = {0.6, 0.0, -0.8}, depth = 3e-6;
   double f[3];
   rk::penalty_force(k, depth, n, f);

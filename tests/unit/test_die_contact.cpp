@@ -50,7 +50,7 @@ TEST(DieContact, ALiftIntoTheDieMeetsItAtTheParticlesAndThePoints) {
   const double lift = 0.8e-3, top = 10e-3, dt = 1e-7, s = u.scene.contact.penalty_scale;
   for (std::size_t I = 0; I < md.n; ++I) st.u[3 * I + 2] = lift;
   rk::DieContact contact(md, u.scene, u.dies);
-  const double bound = contact.compute(md, st, 0.0, dt);
+  const double bound = contact.compute(md, st, 0.0, dt, dt);
   const rk::DieTotals& tot = contact.totals()[0];
 
   const LiftedPast past = lifted_past(md, lift, top, s, dt);
@@ -85,8 +85,8 @@ TEST(DieContact, SkippedLookupsFindTheSameContactsAsLookingUpEverySlave) {
       st.v[3 * I] = 1.0, st.v[3 * I + 2] = -0.5;
     }
     rk::DieContact fresh(md, u.scene, u.dies);  // looks every slave up at its first call
-    kept.compute(md, st, t, dt);
-    fresh.compute(md, st, t, dt);
+    kept.compute(md, st, t, dt, dt);
+    fresh.compute(md, st, t, dt, dt);
     for (std::size_t k = 0; k < kept.totals().size(); ++k) {  // the die, then the symmetry planes
       const rk::DieTotals &a = kept.totals()[k], &b = fresh.totals()[k];
       ASSERT_EQ(a.contacts, b.contacts) << "step " << n << ", obstacle " << k;
@@ -113,7 +113,7 @@ TEST(DieContact, TheDiesHoldTheMaterialAtTheParticlesNotTheirCoefficients) {
   ASSERT_LT(raised, md.n);
   st.u[3 * raised + 2] = bump;
   rk::DieContact contact(md, u.scene, u.dies);
-  contact.compute(md, st, 0.0, dt);
+  contact.compute(md, st, 0.0, dt, dt);
 
   const AboveCount above = count_above(md, u.scene, st, top);
   ASSERT_TRUE(above.regular);
@@ -130,12 +130,12 @@ TEST(DieContact, SymmetryPlanesHoldTheMaterialThatCrossesThem) {
   const double shift = 0.8e-3, dt = 1e-7, s = u.scene.contact.penalty_scale;  // across x = 0, not into the die
   for (std::size_t I = 0; I < md.n; ++I) st.u[3 * I] = -shift;
   rk::DieContact contact(md, u.scene, u.dies);
-  const double bound = contact.compute(md, st, 0.0, dt);
+  const double bound = contact.compute(md, st, 0.0, dt, dt);
   rk::Scene flipped = u.scene;  // a plane given with its normal away from the part holds the same side
   for (auto& plane : flipped.symmetry_planes)
     for (double& c : plane.normal) c = -c;
   rk::DieContact same(md, flipped, u.dies);
-  same.compute(md, st, 0.0, dt);
+  same.compute(md, st, 0.0, dt, dt);
   ASSERT_EQ(contact.totals().size(), 2u) << "the die, then the planes";
   const rk::DieTotals& planes = contact.totals()[1];
 
@@ -230,7 +230,7 @@ TEST(DieContact, FrictionSticksWhenTheStickForceIsWithinMuFn) {
   const double expected = -lifted.stick_mass() * vx / dt;
   for (double m : {mu, 0.5}) {  // stuck: the force does not depend on mu
     rk::DieContact contact(u.md, with_friction(u, m), u.dies);
-    contact.compute(u.md, st, 0.0, dt);
+    contact.compute(u.md, st, 0.0, dt, dt);
     const rk::DieTotals& tot = contact.totals()[0];
     ASSERT_EQ(std::size_t(tot.contacts + tot.point_contacts), lifted.slaves.size());
     EXPECT_NEAR(tot.force[2] / -lifted.normal_force(s), 1.0, 1e-9) << "the normal force is unchanged";
@@ -239,7 +239,7 @@ TEST(DieContact, FrictionSticksWhenTheStickForceIsWithinMuFn) {
     EXPECT_LT(std::abs(tot.force[0]), m * std::abs(tot.force[2])) << "within the friction cone";
   }
   rk::DieContact frictionless(u.md, u.scene, u.dies);  // the scene's mu = 0: no tangential force
-  frictionless.compute(u.md, st, 0.0, dt);
+  frictionless.compute(u.md, st, 0.0, dt, dt);
   EXPECT_EQ(frictionless.totals()[0].force[0], 0.0);
   EXPECT_EQ(frictionless.totals()[0].force[1], 0.0);
 }
@@ -254,7 +254,7 @@ TEST(DieContact, FrictionSlipsAtMuFnAgainstTheSlidingDirection) {
   const double v[3] = {speed * dir[0], speed * dir[1], 0};
   const rk::State st = Lifted::state(u.md, v);
   rk::DieContact contact(u.md, with_friction(u, mu), u.dies);
-  contact.compute(u.md, st, 0.0, dt);
+  contact.compute(u.md, st, 0.0, dt, dt);
   const rk::DieTotals& tot = contact.totals()[0];
   const double fn = lifted.normal_force(s);
   ASSERT_EQ(std::size_t(tot.contacts + tot.point_contacts), lifted.slaves.size());
@@ -274,7 +274,7 @@ TEST(DieContact, ADieSlidingOverMaterialAtRestDragsItAlong) {
   const double rest[3] = {0, 0, 0};
   const rk::State st = Lifted::state(u.md, rest);
   rk::DieContact contact(u.md, scene, u.dies);
-  contact.compute(u.md, st, 0.0, dt);
+  contact.compute(u.md, st, 0.0, dt, dt);
   const rk::DieTotals& tot = contact.totals()[0];
   const double fn = lifted.normal_force(s);
   ASSERT_EQ(std::size_t(tot.contacts + tot.point_contacts), lifted.slaves.size());
@@ -292,7 +292,7 @@ TEST(DieContact, FrictionWorkIsTheForceTimesTheMeanSlidingSpeed) {
       const double v[3] = {sign * speed, 0, 0};
       rk::State st = Lifted::state(u.md, v);
       rk::DieContact contact(u.md, with_friction(u, mu), u.dies);
-      contact.compute(u.md, st, 0.0, dt);
+      contact.compute(u.md, st, 0.0, dt, dt);
       const double ft = std::abs(contact.totals()[0].force[0]);
       ASSERT_GT(ft, 0.0);
       // still sliding at the same speed after the step: the work is dt |F_t| v

@@ -45,7 +45,7 @@ TEST(RigidWall, HoldsTheMaterialAtTheParticlesNotTheirCoefficients) {
   ASSERT_LT(raised, md.n);
   st.u[3 * raised + 2] = bump;
   rk::DieContact contact(md, w.scene, {});
-  contact.compute(md, st, 0.0, dt);
+  contact.compute(md, st, 0.0, dt, dt);
   ASSERT_EQ(contact.totals().size(), 2u) << "the wall, then the symmetry planes";
 
   const AboveCount above = count_above(md, w.scene, st, kTop);
@@ -64,7 +64,7 @@ TEST(RigidWall, ALiftThroughTheWallIsPushedBackAlongItsNormal) {
   const double lift = 0.8e-3, dt = 1e-7, s = w.scene.contact.penalty_scale;
   for (std::size_t I = 0; I < md.n; ++I) st.u[3 * I + 2] = lift;
   rk::DieContact contact(md, w.scene, {});
-  const double bound = contact.compute(md, st, 0.0, dt);
+  const double bound = contact.compute(md, st, 0.0, dt, dt);
   const rk::DieTotals& wall = contact.totals()[0];
 
   const LiftedPast past = lifted_past(md, lift, kTop, s, dt);
