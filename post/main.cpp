@@ -159,7 +159,7 @@ void sort_by_global_id(Frame& fr, const std::vector<Field>& fields, const std::s
 }
 
 // The integration cells of every rank (hexahedra or tetrahedra on the particles, by global id),
-// with the rank that integrates each: the partition as the seed's Figs. 8c, 13 and 18 show it.
+// with the rank that integrates each: the partition as Figs. 8c, 13 and 18 of Wang et al. 2007 show it.
 std::pair<rk::VtuCells, std::vector<std::int64_t>> read_cells(const std::string& case_dir, int ranks,
                                                               const std::string& prep_hash) {
   rk::VtuCells cells;

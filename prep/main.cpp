@@ -1,6 +1,8 @@
 // rkprep: scene + CAD -> particles, integration cells, METIS partition, one subdomain file per rank.
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -56,6 +58,26 @@ void print_partition(const nlohmann::json& report) {
               report["values_exchanged_per_step"].get<std::size_t>());
 }
 
+// The case folder takes files, checked before any meshing is spent: the folder is made (only the
+// folder: an empty sub/ would read as a case already) and a file is written in it and removed.
+void check_case_folder_writable(const fs::path& out) {
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) throw rk::Error(out.string() + ": cannot create the case folder (" + ec.message() + "); choose another --out");
+  const fs::path probe = out / ".rkprep_write_check";
+  errno = 0;
+  std::FILE* f = std::fopen(probe.c_str(), "w");
+  int err = f ? 0 : (errno ? errno : EIO);
+  if (f) {
+    if (std::fputs("rkprep\n", f) < 0) err = errno ? errno : EIO;
+    if (std::fclose(f) != 0 && !err) err = errno ? errno : EIO;
+    fs::remove(probe, ec);
+  }
+  if (err)
+    throw rk::Error(out.string() + ": cannot write in the case folder (" + std::strerror(err) +
+                    "); choose another --out");
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"rkprep: build particles, integration cells and per-rank subdomain files from a scene", "rkprep"};
   rk::add_version_flag(app);
@@ -90,6 +112,7 @@ int run(int argc, char** argv) {
   PhaseTimer timer(quiet);
   auto t0 = std::chrono::steady_clock::now();
   const rk::Scene scene = rk::load_scene(scene_file, rk::parse_overrides(sets), rk::Side::prep);
+  check_case_folder_writable(out);
   // a new case never lies beside another's results: refused, or with --force those files go first
   if (const std::string old = rk::case_entries_in(out); !old.empty()) {
     if (!force)

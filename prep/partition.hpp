@@ -1,7 +1,7 @@
-// Seed section 4.1: partition INTEGRATION CELLS (METIS on the cells' dual graph, weighted by their
+// Wang et al. 2007, section 4.1: partition INTEGRATION CELLS (METIS on the cells' dual graph, weighted by their
 // integration points); each rank's local particles are those in the supports of its points (and
 // of its owned surface particles, for the essential BCs), each particle has one owner, and
-// per-neighbour overlap maps list the shared particles (seed Fig. 3).
+// per-neighbour overlap maps list the shared particles (Fig. 3 of Wang et al. 2007).
 #pragma once
 #include <nlohmann/json.hpp>
 

@@ -6,11 +6,10 @@ f1 = (1.8751^2 / (2 pi L^2)) sqrt(E I / (rho A)), and the mechanical energy's dr
   beam_check.py CASE [--json]
 """
 import csv
-import json
 import math
 from pathlib import Path
 
-from case_check import energy_drift, main_of
+from case_check import energy_drift, main_of, read_solve
 
 L, B, E, RHO = 0.2, 0.01, 71.0e9, 2700.0  # the scene's beam
 F1 = 1.8751 ** 2 / (2 * math.pi * L ** 2) * math.sqrt(E * B ** 4 / 12 / (RHO * B ** 2))
@@ -24,7 +23,7 @@ def check(case: Path) -> dict:
     peaks = [t[k] for k in range(1, len(ke) - 1) if ke[k] > ke[k - 1] and ke[k] >= ke[k + 1] and ke[k] > 0.5 * max(ke)]
     periods = [b - a for a, b in zip(peaks, peaks[1:])]
     f = 1 / (2 * sum(periods) / len(periods)) if periods else float("nan")
-    return {"steps": json.loads((case / "solve.json").read_text())["steps"] if (case / "solve.json").exists() else None,
+    return {"steps": read_solve(case)["steps"] if (case / "solve.json").exists() else None,
             "f1_hz": f, "f1_beam_hz": F1, "f1_error": f / F1 - 1, "kinetic_peaks": len(peaks), **energy_drift(case)}
 
 

@@ -1,14 +1,15 @@
 #!/usr/bin/python3
-"""The seed's Taylor bar in CalculiX (ccx explicit dynamics), for the bench's side-by-side.
+"""The Taylor bar of Wang et al. 2007 in CalculiX (ccx explicit dynamics), for the bench's side-by-side.
 
-The seed compared its RKPM bar with LS-DYNA on 1200 hexahedra; this runs the same quarter bar
-(radius 3.2 mm, length 32.4 mm, OFHC copper of seed Table 1, 227 m/s onto a rigid frictionless
+Wang, Li, Han & Zhong (Development of parallel 3D RKPM meshless bulk forming simulation system,
+2007, section 5.1) compared their RKPM bar with LS-DYNA on 1200 hexahedra; this runs the same quarter bar
+(radius 3.2 mm, length 32.4 mm, OFHC copper of the paper's Table 1, 227 m/s onto a rigid frictionless
 wall, 80 us) on 1200 reduced-integration hexahedra (C3D8R) in an independent finite-element
 code, Debian's calculix-ccx (installed with apt when missing). The wall is the impact face held
 at u_z = 0 (frictionless: the face slides freely in its plane; the bar does not rebound within
 80 us), the quarter's cut faces are symmetry planes. Writes CASE/taylor.inp, runs ccx there and
-prints one JSON object: wall time, footprint radius and final length (measured as for rkforge,
-BENCHMARKS.md case 1: the largest radius among the nodes on the wall, the extent along the axis).
+prints one JSON object: wall time, footprint radius and final length (measured as for rkforge
+by scripts/taylor_metrics.py: the largest radius among the nodes on the wall, the extent along the axis).
   scripts/calculix_taylor.py --work CASE [--layers 25 --square 4]
 """
 import argparse
@@ -20,7 +21,7 @@ import time
 from pathlib import Path
 
 R, L, V = 3.2e-3, 32.4e-3, 227.0
-E, NU, RHO, SY, H = 117.0e9, 0.35, 8930.0, 400.0e6, 100.0e6  # seed Table 1 (as geometry/taylor_bar)
+E, NU, RHO, SY, H = 117.0e9, 0.35, 8930.0, 400.0e6, 100.0e6  # Table 1 of Wang et al. 2007 (as geometry/taylor_bar)
 
 
 def ensure_ccx():
@@ -86,7 +87,7 @@ def write_deck(path, layers, n, first_layer):
     section, quads = quarter_section(n)
     ns = len(section)
     heights = layer_heights(layers, first_layer)
-    lines = ["*HEADING", "Taylor bar, seed 5.1: quarter model, C3D8R", "*NODE, NSET=NALL"]
+    lines = ["*HEADING", "Taylor bar, Wang et al. 2007 section 5.1: quarter model, C3D8R", "*NODE, NSET=NALL"]
     for layer in range(layers + 1):
         z = heights[layer]
         for i, (x, y) in enumerate(section):

@@ -1,11 +1,45 @@
 """What the case scripts share: a CASE argument that must be a case folder of the expected scene (one
-clear message otherwise, never a traceback), the checks' command line CASE [--json] (the numbers as
-JSON or a one-line summary), and the energy drift of a long run."""
+clear message otherwise, never a traceback), solve.json read only in the format these scripts know,
+the checks' command line CASE [--json] (the numbers as JSON or a one-line summary), and the energy
+drift of a long run."""
 import argparse
 import csv
 import json
 import sys
 from pathlib import Path
+
+# The `format` of CASE/solve.json that these scripts read: rksolve's kRunSummaryFormat
+# (shared/run_summary.hpp). history.csv carries no format of its own; the solve.json of the same run
+# vouches for it.
+SOLVE_FORMAT = 1
+
+
+def refuse(message: str) -> None:
+    """One line on stderr, naming the script, and exit status 1."""
+    raise SystemExit(f"{Path(sys.argv[0]).name}: {message}")
+
+
+def read_solve(case: Path) -> dict:
+    """CASE/solve.json; refused with one line when it is damaged or of another format than SOLVE_FORMAT."""
+    path = Path(case) / "solve.json"
+    try:
+        summary = json.loads(path.read_text())
+    except (OSError, UnicodeDecodeError, ValueError) as e:
+        refuse(f"{path}: cannot read it as JSON ({e.__class__.__name__}); re-run rksolve on the case")
+    if not isinstance(summary, dict):
+        refuse(f"{path}: not a JSON object (a damaged file?); re-run rksolve on the case")
+    found = summary.get("format", 0)
+    if found != SOLVE_FORMAT:
+        refuse(f"{path}: written by another version of rksolve (format {found}, this script reads {SOLVE_FORMAT}); "
+               "re-run rksolve on the case")
+    return summary
+
+
+def check_run(case: Path) -> None:
+    """A finished run (one with solve.json) of the format these scripts read, else refused; a run that
+    did not finish has no solve.json and its history.csv is read as it is."""
+    if (Path(case) / "solve.json").exists():
+        read_solve(case)
 
 
 def energy_drift(case: Path) -> dict:
@@ -26,6 +60,7 @@ def case_folder(needs=("prep.json",)):
             if not (case / f).exists():
                 made_by = {"prep.json": "rkprep", "history.csv": "rksolve", "vtk/case.pvd": "rkpost"}.get(f, "rkprep")
                 raise argparse.ArgumentTypeError(f"{text}: not a case folder with {f} (written by {made_by})")
+        check_run(case)
         return case
     return check
 

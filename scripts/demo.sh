@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# make demo: the Taylor bar (seed 5.1) from its CAD file to ParaView-ready VTK on N ranks.
+# make demo: the Taylor bar (Wang et al. 2007, section 5.1) from its CAD file to ParaView-ready VTK on N ranks.
 #   scripts/demo.sh BUILD_DIR CASE_DIR RANKS
 set -euo pipefail
 build=${1:-build}; case_dir=${2:-build/demo/taylor_bar}; ranks=${3:-2}

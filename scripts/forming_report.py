@@ -8,8 +8,8 @@ Reads CASE/history.csv (die stroke and force, energies, volume change) and CASE/
 merged frames from rkpost: workpiece = part 0, dies = parts 1, 2, ...). Writes
   CASE/plots/force_stroke.png   press force (full part) against stroke, one curve per moving die
   CASE/plots/energies.png       energy balance against time
-  CASE/plots/stages.png         sections through the first symmetry plane at N stages (like the
-                                seed's Figs. 11 and 16): particles coloured by plastic strain, dies grey
+  CASE/plots/stages.png         sections through the first symmetry plane at N stages (like
+                                Figs. 11 and 16 of Wang et al. 2007): particles coloured by plastic strain, dies grey
 and prints (or --json) the stroke reached, peak force, energy error and volume change: the points'
 (sum w_g J, elastic by construction), and the cells' through the particles less the points' (what the
 discretization lost or gained).

@@ -16,6 +16,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from case_check import check_run  # noqa: E402
+
 
 def read_history(case: Path):
     with open(case / "history.csv") as f:
@@ -126,6 +128,7 @@ if __name__ == "__main__":
         case = spec.partition("=")[0] if a.compare else spec
         if not (Path(case) / "history.csv").exists():
             ap.error(f"{case}: not a case folder with history.csv (written by rksolve)")
+        check_run(Path(case))
     if a.compare:
         compare_forces(a.compare, a.case)
     elif len(a.case) > 1:

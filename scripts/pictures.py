@@ -1,7 +1,7 @@
 """Pictures of a case, rendered off-screen by ParaView from what rkpost wrote (CASE/vtk/case.pvd):
 the deformed part coloured by equivalent plastic strain, with the dies, at chosen frames, by its
 temperature where the material has one, and the integration cells coloured by the rank that
-computes them (the seed's Figs. 8c, 13, 18).
+computes them (as Figs. 8c, 13 and 18 of Wang et al. 2007 show the partition).
 
   scripts/pvbatch_offscreen.sh scripts/pictures.py CASE [--frames 0,-1] [--size 900x700]
   (or xvfb-run -a pvbatch ...; plain pvbatch where a display exists)

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""Plots of a Taylor bar case: impact-face radius and length against time (like the seed's Fig. 7,
-with the seed's final values marked) and the energy balance. Writes CASE/plots/*.png and
-CASE/plots/results.json (the key results against the seed's, shown by rkpost in report.md)."""
+"""Plots of a Taylor bar case: impact-face radius and length against time (like Fig. 7 of Wang et al.
+2007, with that paper's final values marked) and the energy balance. Writes CASE/plots/*.png and
+CASE/plots/results.json (the key results against the references, shown by rkpost in report.md)."""
 import argparse
 import csv
 import json
@@ -30,8 +30,8 @@ def main(case: Path) -> None:
         a.plot(t, [m[key] for m in series], "o-", label="rkforge")
         a.plot(HISTORY_US, HISTORY[key], "k--", lw=1, label="converged FE history (composite tetrahedron, h = 0.19 mm)")
         a.plot([80], [REFERENCE[key]["converged"]], "*", ms=10, label="converged FE (80 us)")
-        a.plot([80], [REFERENCE[key]["seed_rkpm"]], "s", label="2007 paper RKPM (80 us)")
-        a.plot([80], [REFERENCE[key]["seed_fem"]], "^", label="2007 paper FEM, LS-DYNA (80 us)")
+        a.plot([80], [REFERENCE[key]["paper_rkpm"]], "s", label="2007 paper RKPM (80 us)")
+        a.plot([80], [REFERENCE[key]["paper_fem"]], "^", label="2007 paper FEM, LS-DYNA (80 us)")
         a.set_xlabel("time (us)")
         a.set_ylabel(label)
         a.grid(True)

@@ -30,8 +30,8 @@ TAYLOR_PARTS = ("taylor_bar.geo", "taylor_bar_full.geo", "taylor_bar_jc1983.geo"
 EXPERIMENT = {"footprint_radius_mm": 0.5 * 1.78 * 7.62, "final_length_mm": 0.638 * 25.4}
 
 REFERENCE = {  # converged FE (Foulk et al. 2021, via the Carina.jl Taylor benchmark), the 2007 paper's RKPM and FEM
-    "footprint_radius_mm": {"converged": 7.22, "seed_rkpm": 7.30, "seed_fem": 7.38},
-    "final_length_mm": {"converged": 21.45, "seed_rkpm": 21.48, "seed_fem": 21.46},
+    "footprint_radius_mm": {"converged": 7.22, "paper_rkpm": 7.30, "paper_fem": 7.38},
+    "final_length_mm": {"converged": 21.45, "paper_rkpm": 21.48, "paper_fem": 21.46},
 }
 
 
@@ -124,7 +124,7 @@ def main() -> int:
             continue
         p = REFERENCE[key]
         print(f"  {label:17s} {m[key]:7.3f} mm   converged FE {p['converged']:.2f} ({100 * (m[key] / p['converged'] - 1):+.2f} %),"
-              f" 2007 paper RKPM {p['seed_rkpm']:.2f}, FEM {p['seed_fem']:.2f}")
+              f" 2007 paper RKPM {p['paper_rkpm']:.2f}, FEM {p['paper_fem']:.2f}")
     print(f"  rim lifted {m['rim_lift_mm']:.3f} mm off the wall; radius within 0.3 spacing of the wall "
           f"{m['radius_near_wall_mm']:.3f} mm, largest radius {m['max_radius_mm']:.3f} mm")
     print(f"  max eq. plastic strain {m['max_eq_plastic_strain']:.2f} (other codes 2.5-3.2)")

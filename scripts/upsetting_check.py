@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""Frictionless upsetting against the closed form (BENCHMARKS.md case 2).
+"""Frictionless upsetting of an aluminium cylinder (geometry/upsetting) against the closed form.
 
-F = sigma(ep) A0 H0 / H with ep = ln(H0/H) - sigma/E (aluminium, seed Table 4), D = D0 sqrt(H0/H).
+F = sigma(ep) A0 H0 / H with ep = ln(H0/H) - sigma/E (aluminium of Table 4 of Wang et al. 2007), D = D0 sqrt(H0/H).
 Reads CASE/history.csv (die force, full part) and the last .vtu (diameter, via meshio). The explicit
 contact force rings with the stress waves, so each force is the mean of the history rows within
 +-1 % reduction of the point, against the mean of the closed form over the same rows.

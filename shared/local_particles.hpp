@@ -1,4 +1,4 @@
-// Which particles a rank holds (seed Sec. 4.1, Fig. 3), shared by rkprep (the reference
+// Which particles a rank holds (Wang et al. 2007, Sec. 4.1, Fig. 3), shared by rkprep (the reference
 // configuration) and rksolve's reference updates (the current one): the nodes of its integration
 // cells, every particle whose support covers one of its integration points, and the whole support
 // of every particle it owns (u^h(X_I): the essential-BC rows, the output, the reference updates'

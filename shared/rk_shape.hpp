@@ -1,4 +1,4 @@
-// Reproducing kernel shape functions (seed eq. (3)):
+// Reproducing kernel shape functions (Wang et al. 2007, eq. (3)):
 //   N_I(X) = C(X; X - X_I) phi_a(X - X_I) V_I,   C = H^T(0) M^{-1}(X) H(X - X_I),
 //   M(X)   = sum_I H(X - X_I) H^T(X - X_I) phi_a(X - X_I) V_I,
 // with a linear (4 terms) or quadratic (10 terms) basis H, and their exact gradients.

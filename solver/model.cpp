@@ -1,5 +1,5 @@
 // Builds a rank's offline data (model.hpp) from its subdomain: the RK shape functions at the points
-// (seed eq. (3)), or their gradients smoothed over the nodal-integration cells (SCNI, Chen et al. 2001),
+// (Wang et al. 2007, eq. (3)), or their gradients smoothed over the nodal-integration cells (SCNI, Chen et al. 2001),
 // the cells' edges for the stable step, and the owned particles' material rows N_J(X_I).
 #include "model.hpp"
 

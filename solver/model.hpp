@@ -65,7 +65,7 @@ struct Model {
   // outside) and the local cell each bounds
   std::vector<std::int32_t> surface_face_offsets, surface_face_nodes, surface_face_cell;
 
-  // overlap maps (seed Fig. 3)
+  // overlap maps (Wang et al. 2007, Fig. 3)
   std::vector<std::int32_t> neighbour_ranks;
   std::vector<std::vector<std::int32_t>> overlap;
 

@@ -1,4 +1,4 @@
-// rksolve's time loop: explicit central differences on the RKPM semi-discretization (seed Fig. 5),
+// rksolve's time loop: explicit central differences on the RKPM semi-discretization (Wang et al. 2007, Fig. 5),
 // the step as a sequence of named phases (Simulation::run), each timed under its own name.
 #include "solver.hpp"
 

@@ -1,4 +1,4 @@
-// Back extrusion billet (BENCHMARKS.md case 4): copper cylinder D = 40 mm, H = 30 mm, in mm; a quarter
+// Back extrusion billet: copper cylinder D = 40 mm, H = 30 mm, in mm; a quarter
 // is modeled (symmetry planes x = 0 and y = 0), bottom on the container floor z = 0. Structured
 // hexahedra (O-grid); rkprep sets h, the particle spacing in mm.
 DefineConstant[ h = {2.5, Name "spacing (mm)"} ];

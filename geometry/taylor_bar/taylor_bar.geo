@@ -1,7 +1,7 @@
-// Taylor bar (seed 5.1): quarter of a copper cylinder, radius 3.2 mm, length 32.4 mm, in mm.
+// Taylor bar (section 5.1 of Wang, Li, Han & Zhong 2007, Development of parallel 3D RKPM meshless bulk forming simulation system): quarter of a copper cylinder, radius 3.2 mm, length 32.4 mm, in mm.
 // Symmetry planes x = 0 and y = 0, axis +z, impact face z = 0. Structured hexahedra (an O-grid:
 // a square core and two curved blocks) so that the particles (mesh nodes) lie on every surface.
-// rkprep sets h, the particle spacing in mm; h = 0.9 gives the seed's 1369 particles (37 x 37).
+// rkprep sets h, the particle spacing in mm; h = 0.9 gives the 2007 paper's 1369 particles (37 x 37).
 // R and L may be set by a script that includes this one (taylor_bar_jc1983.geo).
 DefineConstant[ h = {0.9, Name "spacing (mm)"} ];
 DefineConstant[ R = 3.2, L = 32.4 ];

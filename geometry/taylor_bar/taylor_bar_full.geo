@@ -1,4 +1,4 @@
-// Taylor bar (seed 5.1), the whole copper cylinder: radius 3.2 mm, length 32.4 mm, in mm, axis +z,
+// Taylor bar (section 5.1 of Wang et al. 2007), the whole copper cylinder: radius 3.2 mm, length 32.4 mm, in mm, axis +z,
 // impact face z = 0. The quarter's O-grid (taylor_bar.geo) turned four times, so the full and the
 // quarter model have the same particles in the quarter (the symmetry check).
 DefineConstant[ h = {0.9, Name "spacing (mm)"} ];

@@ -1,4 +1,4 @@
-// Upsetting billet (BENCHMARKS.md case 2): aluminium cylinder D0 = H0 = 20 mm, in mm. One eighth is
+// Upsetting billet: aluminium cylinder D0 = H0 = 20 mm, in mm. One eighth is
 // modeled: symmetry planes x = 0, y = 0 (quarter) and z = 0 (mid-height); the top die presses at
 // z = 10. Structured hexahedra (O-grid) so the particles (mesh nodes) lie on every surface.
 // rkprep sets h, the particle spacing in mm.

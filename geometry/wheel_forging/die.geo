@@ -1,11 +1,11 @@
-// Wheel forging lower die (BENCHMARKS.md case 5), a closed solid of revolution about z, in mm. The
+// Wheel forging lower die, a closed solid of revolution about z, in mm. The
 // cavity it forms with the punch at full stroke (punch.geo lowered 20 mm):
 //   hub        r <  15 mm   z   0 .. 25
 //   inner web  r 15 .. 31   z   0 .. 20   (the slug, r < 30, stands on the floor z = 0)
 //   thin web   r 31 .. 40   z  12 .. 20   (the floor steps up 1 mm outside the slug)
 //   rim        r 40 .. 45   z  -5 .. 25   (a groove in the die floor, a recess in the punch)
 // Volume at full stroke: pi (15^2 25 + (31^2 - 15^2) 20 + (40^2 - 31^2) 8 + (45^2 - 40^2) 30)
-// = 119 580 mm^3 = 1.057 x the slug's 113 097 mm^3 (about 5 % larger, as BENCHMARKS.md asks).
+// = 119 580 mm^3 = 1.057 x the slug's 113 097 mm^3 (about 5 % larger).
 SetFactory("OpenCASCADE");
 Cylinder(1) = {0, 0, -15, 0, 0, 85, 55};   // die block, z -15 .. 70
 Cylinder(2) = {0, 0, 0, 0, 0, 80, 31};     // floor under the slug and hub

@@ -1,4 +1,4 @@
-// Wheel forging punch (BENCHMARKS.md case 5) at its start position, in mm: a cylinder of radius
+// Wheel forging punch at its start position, in mm: a cylinder of radius
 // 44.9 mm (0.1 mm clearance in the die bore) whose face at z = 40 touches the slug, with a 5 mm
 // recess for the hub (r < 15) and one for the rim (r 40 .. 44.9). It moves 20 mm down.
 SetFactory("OpenCASCADE");

@@ -1,4 +1,4 @@
-// Wheel forging slug (BENCHMARKS.md case 5): aluminium cylinder D = 60 mm, H = 40 mm, in mm. A 30-degree
+// Wheel forging slug: aluminium cylinder D = 60 mm, H = 40 mm, in mm. A 30-degree
 // sector between the half-planes at 30 and 60 degrees about the z axis is modeled, with symmetry
 // planes of non-axis-aligned normal on its cut faces. Structured hexahedra (a kite at the axis and two
 // blocks out to the rim) so the particles (mesh nodes) lie on every surface. rkprep sets h (mm).

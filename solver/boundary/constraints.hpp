@@ -1,4 +1,4 @@
-// Essential boundary conditions as constraints on the displacement field (seed Sec. 2, eq. (4)):
+// Essential boundary conditions as constraints on the displacement field (Wang et al. 2007, Sec. 2, eq. (4)):
 // at a particle X_I on a face, e_k . u^h(X_I) = g_k(t) for each constrained direction e_k, with
 // u^h(X_I) = sum_J N_J(X_I) d_J. Built once from the scene's faces (fixed faces, prescribed faces,
 // symmetry planes): the directions of each particle are orthonormalized (Gram-Schmidt, so planes of

@@ -1,4 +1,4 @@
-// Essential boundary conditions applied to the velocities each step (seed Sec. 2), so that the
+// Essential boundary conditions applied to the velocities each step (Wang et al. 2007, Sec. 2), so that the
 // displacements u^{n+1} = u^n + dt v^{n+1/2} meet e_k . u = g_k(t^{n+1}) at the constrained particles:
 //   nodal           on the coefficients d_I of each particle (fast; approximate, since RK shape
 //                   functions do not interpolate: u^h(X_I) != d_I);

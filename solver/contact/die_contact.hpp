@@ -1,4 +1,4 @@
-// Contact of the workpiece with the moving rigid dies (seed Sec. 4.3), its fixed rigid walls and its
+// Contact of the workpiece with the moving rigid dies (Wang et al. 2007, Sec. 4.3), its fixed rigid walls and its
 // symmetry planes: one treatment for every rigid obstacle, on the material, not on the coefficients.
 // The slaves are material points, each with its row of shape functions:
 // - every owned particle at X_I + u^h(X_I), not only those on the initial surface;

@@ -2,7 +2,7 @@
 // (Simo 1992; de Souza Neto, Peric & Owen, Computational Methods for Plasticity, box 14.3).
 // The plastic state is C_p^{-1} (so b_e^trial = F C_p^{-1} F^T depends on F only: objective by
 // construction) and the equivalent plastic strain ep. Isotropic hardening, linear
-// sigma_y = sigma_y0 + H ep or power law sigma_y = K (eps0 + ep)^n (seed Table 4), or the flow
+// sigma_y = sigma_y0 + H ep or power law sigma_y = K (eps0 + ep)^n (Wang et al. 2007, Table 4), or the flow
 // stress of strain, strain rate and temperature of Johnson & Cook (1983),
 //   sigma_y = (A + B ep^n) (1 + C ln max(rate / rate0, 1)) (1 - T*^m),  T* = (T - T_room) / (T_melt - T_room),
 // or the hot-forging databases' Hansel & Spittel (1979) form, with T in Celsius as they give it,

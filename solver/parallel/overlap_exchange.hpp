@@ -1,4 +1,4 @@
-// Seed Sec. 4.2 (Figs. 3-4): each rank computes partial sums for its local particles from its
+// Wang et al. 2007, Sec. 4.2 (Figs. 3-4): each rank computes partial sums for its local particles from its
 // own integration points; the partials of the particles shared with each neighbour rank are
 // exchanged with non-blocking MPI and added. The partials are 64-bit fixed point
 // (parallel/fixed_point.hpp), so every copy of a shared particle gets the bitwise same total.

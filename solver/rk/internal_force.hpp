@@ -1,4 +1,4 @@
-// Scatter: f^int_I = sum_g w_g P_g grad_X N_I(X_g) (seed eq. (19)) from this rank's own points,
+// Scatter: f^int_I = sum_g w_g P_g grad_X N_I(X_g) (Wang et al. 2007, eq. (19)) from this rank's own points,
 // accumulated in fixed point (parallel/fixed_point.hpp) so the result is independent of summation order.
 // The points are added in two groups so that the boundary points' partials can travel while the
 // interior points are computed.

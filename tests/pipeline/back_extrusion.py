@@ -1,4 +1,4 @@
-"""Back extrusion (BENCHMARKS.md case 4) as the scene stands, with its reference updates, through its
+"""Back extrusion (section 5.2 of Wang et al. 2007) as the scene stands, with its reference updates, through its
 full 15 mm stroke on 2 ranks, against the scene's checks: energy identity within 2 %, the volume kept
 (below), the punch force curve against the measured one (below), and a cup wall as high as the
 volume it holds.

@@ -1,6 +1,6 @@
 """Essential boundary conditions: the nodal and the exact (transformation) method.
 
-1. Patch test (BENCHMARKS.md section 6) on a cube of structured hexahedra (h = 1.25 mm, support
+1. Patch test on a cube of structured hexahedra (h = 1.25 mm, support
    radius a = 2 h): the homogeneous motion v = G X, G = diag(10, -3, -3) 1/s, given as the initial
    velocity and held by the boundary conditions (three symmetry planes, three prescribed faces).
    The exact solution keeps v = G X with a uniform stress, so an integration that is consistent
@@ -23,8 +23,8 @@
    the exact method the cut faces' particles stay on their planes to round-off; the nodal method
    moves their coefficients along the planes to round-off, and how far the material at them
    leaves the planes is printed.
-3. Symmetry: the quarter Taylor bar (two symmetry planes) against the whole bar at the seed's
-   spacing, 30 us into the impact: the quarter's footprint radius reads 0.35-0.45 % wider than the
+3. Symmetry: the quarter Taylor bar (two symmetry planes) against the whole bar at the 2007
+   paper's spacing (0.9 mm), 30 us into the impact: the quarter's footprint radius reads 0.35-0.45 % wider than the
    whole bar's (within 0.5 %, held at its measurement), radius, length, steps and wall time of each
    printed side by side.
 4. Bad boundary input: a face that holds no particle, a plane through the inside of the part, two

@@ -1,4 +1,4 @@
-"""Short runs of the two forming scenes of the seed (BENCHMARKS.md cases 4 and 5) at a coarse spacing:
+"""Short runs of the two forming scenes of Wang et al. 2007 (sections 5.2 and 5.3) at a coarse spacing:
 back extrusion on 2 ranks bitwise equal to 1 rank (die contact with friction across the partition,
 through reference updates), and stopped half-way and restarted bitwise equal to the whole run (the
 dies' and the symmetry planes' contact work in the checkpoint);

@@ -2,7 +2,7 @@
 contact that lets the rim lift (geometry/taylor_bar/scene_contact.yaml), where the bounds below were
 measured (with the benchmark's wall, which holds the impact face, the updates read r_f -1.5 % and
 L_f +1.1 % but take 1.18x the total-Lagrangian steps: docs/validation.md):
-(1) at the seed's resolution the footprint radius and final length stay within 8 % and 2 % of the
+(1) at the 2007 paper's resolution the footprint radius and final length stay within 8 % and 2 % of the
 total-Lagrangian run (measured -4.1 % and +0.9 %: the updated discretization is not yet as
 accurate as the total-Lagrangian one on this bar, see docs/validation.md), with
 several updates, in fewer steps (the stable step no longer falls with the points' stretch since t = 0;
@@ -44,7 +44,7 @@ def last_frame(case):
     return len(frames), {"x": m.points[order], **{k: m.point_data[k][order] for k in ("velocity", "eq_plastic_strain")}}
 
 
-# (1) accuracy against the total-Lagrangian run, at the seed's resolution (0.9 mm, 1369 particles),
+# (1) accuracy against the total-Lagrangian run, at the 2007 paper's resolution (0.9 mm, 1369 particles),
 # at CFL 0.5, where the bounds were measured; at the default 0.9 the updates smooth away about as
 # much kinetic energy (5.8 % against 5.9 %; r_f -4.7 %, L_f +0.9 %), docs/validation.md "Reference-configuration updates"
 tl_case, tl = run("tl", 2, ["time.cfl=0.5"], spacing=[])

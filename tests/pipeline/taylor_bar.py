@@ -120,6 +120,26 @@ ep_min = float(np.min(vtu.point_data["eq_plastic_strain"]))
 rkcase.check(ep_min >= 0, f"the smallest particle plastic strain is {ep_min:.3g} >= 0")
 report = (case / "report.md").read_text()
 rkcase.check(f"{prep['particles']} / {prep['cells']}" in report and "energy balance" in report, "report.md holds the key numbers")
+# report.md as a person reads it: numbers at 3-4 significant digits (the scene's path aside), never a
+# double's 17 (7.999999999999997e-05); every final value with its unit; the energy verdict on the run's
+# largest error (solve.json max_energy_error), not the last row's, which can have fallen back
+import re  # noqa: E402
+text = "\n".join(ln for ln in report.splitlines() if not ln.startswith("| scene |"))
+long = [n for n in re.findall(r"\d+\.\d+(?:e[-+]?\d+)?", text)
+        if len(n.split("e")[0].replace(".", "").lstrip("0")) > 6]
+rkcase.check(not long, f"report.md prints no number with more than 6 significant digits {long[:3]}")
+final = report.split("## Final values (history.csv)\n\n", 1)[1].split("\n\n", 1)[0].splitlines()
+units = {c[1].strip(): c[3].strip() for c in (ln.split("|") for ln in final[2:])}
+columns = next(csv.reader(open(case / "history.csv")))
+rkcase.check(final[0] == "| quantity | value | unit |" and list(units) == columns and all(units.values())
+             and units["time"] == "s" and units["kinetic"] == "J" and units["max_penetration"] == "m",
+             f"report.md's final values: {len(units)} history columns, each with its unit (time s, kinetic J, ...)")
+largest = re.search(r"\| energy balance \| largest error (\S+) % of the energy scale \(at the end (\S+) %\)", report)
+solve_json = json.loads((case / "solve.json").read_text())
+# (printed to 3 digits: within 1 %; the last row's error differs by 21 % on this bar at 12 us)
+rkcase.check(largest is not None and abs(float(largest[1]) / (100 * solve_json["max_energy_error"]) - 1) < 1e-2,
+             f"report.md's energy balance: largest error {largest and largest[1]} % (solve.json "
+             f"{100 * solve_json['max_energy_error']:.4g} %), at the end {largest and largest[2]} %")
 
 rows = list(csv.DictReader(open(case / "history.csv")))
 solve = json.loads((case / "solve.json").read_text())
@@ -138,7 +158,7 @@ if a.stage == "checkpoint":
                  f"5.361 (converged codes 5.44-5.46)")
 else:
     r, L = m["footprint_radius_mm"], m["final_length_mm"]
-    rkcase.check(prep["particles"] == 1369, "the seed's 1369 particles")
+    rkcase.check(prep["particles"] == 1369, "the 2007 paper's 1369 particles")
     rkcase.check(abs(m["time_s"] - 80e-6) < 1e-12, "last frame at 80 us")
     if a.stage == "nodal":
         rkcase.check(prep["integration_points"] == prep["particles"], "nodal integration: one point per particle")

@@ -23,6 +23,20 @@ p = tools.run([tools.bin / "rkprep", rkcase.TAYLOR, "--ranks", "0", "--out", too
 rkcase.check(p.returncode != 0 and "--ranks: 0 is not a number of ranks (a whole number, at least 1)" in p.stderr
              and len(p.stderr) < 200, f"rkprep --ranks 0: {p.stderr.strip()}")
 
+# an --out that cannot take files is refused before any meshing, with one message naming it. The
+# tests run as root, whom a chmod does not stop: a folder under a regular file cannot be made, and
+# sysfs takes no new file even from root.
+blocker = tools.work / "a_file"
+blocker.write_text("not a folder\n")
+unwritable = [(blocker / "case", "cannot create the case folder")]
+if __import__("os").path.isdir("/sys/kernel"):
+    unwritable.append(("/sys/kernel", "cannot write in the case folder"))
+for out, says in unwritable:
+    p = tools.run([tools.bin / "rkprep", rkcase.TAYLOR, "--out", out], expect_ok=False)
+    rkcase.check(p.returncode != 0 and f"rkprep: error: {out}: {says}" in p.stderr and "internal error" not in p.stderr
+                 and "mesh" not in p.stdout and len(p.stderr.strip().splitlines()) == 1,
+                 f"rkprep --out {out}: refused before meshing: {p.stderr.strip()}")
+
 # a new prep never lies beside another case's results: refused without --force, replaced with it
 tools.solve(case, 1, sets=["time.end=1e-6"])
 again = [tools.bin / "rkprep", rkcase.TAYLOR, "--ranks", 1, "--out", case, "--quiet", "--set", "discretization.spacing=1.5e-3"]
@@ -74,3 +88,50 @@ rkcase.check(p.returncode == 0 and "is prepared, not solved" in p.stdout and len
              and (fresh / "vtk" / "die_die_00000.vtu").exists() and not (fresh / "report.md").exists(),
              f"rkpost on a prepared case: {len(part.points)} particles, {len(part.cells[0].data)} cells on ranks 0 and 1, "
              "the die at t = 0")
+
+# the scripts on a case of the other kind: the upsetting with friction (2.5 mm, 1.2 ms: 11 % height
+# reduction, about 3 s) is not a Taylor bar, one message and no traceback; upsetting_check calls the
+# force's departure from the frictionless closed form a difference, not an error
+upset = tools.case("upsetting_friction")
+tools.prep(upset, 1, scene=rkcase.ROOT / "geometry" / "upsetting" / "scene_friction.yaml",
+           sets=["discretization.spacing=2.5e-3"])
+tools.solve(upset, 1, sets=["time.end=1.2e-3"])
+tools.post(upset)
+p = tools.run(["/usr/bin/python3", rkcase.ROOT / "scripts" / "taylor_metrics.py", upset], expect_ok=False)
+rkcase.check(p.returncode != 0 and "Traceback" not in p.stderr and len(p.stderr.strip().splitlines()) == 1
+             and "expects a case of the Taylor bar" in p.stderr and "billet.geo" in p.stderr,
+             f"taylor_metrics.py on an upsetting case: {p.stderr.strip()}")
+p = tools.run(["/usr/bin/python3", rkcase.ROOT / "scripts" / "upsetting_check.py", upset])
+table = [ln for ln in p.stdout.splitlines() if ln.startswith("reduction")]
+rkcase.check(table == ["reduction  force (kN)  exact (kN)  difference"] and "   10 %" in p.stdout
+             and "friction mu = 0.12: the differences below are from the frictionless closed form, not errors" in p.stdout,
+             f"upsetting_check.py with friction: the force's departure is a difference: {p.stdout.strip()}")
+
+# solve.json of another format (a run of another rksolve version; history.csv has no format of its
+# own, the solve.json of its run vouches for it): every script that reads the case refuses it with
+# one line naming the file, exit 1, no traceback; a damaged one the same; a run that did not finish
+# (no solve.json) is read as it is. The scripts read the format rksolve writes (shared/run_summary.hpp).
+import json  # noqa: E402
+import re  # noqa: E402
+import shutil  # noqa: E402
+import case_check  # noqa: E402
+cpp = re.search(r"kRunSummaryFormat = (\d+);", (rkcase.ROOT / "shared" / "run_summary.hpp").read_text())
+rkcase.check(cpp and int(cpp[1]) == case_check.SOLVE_FORMAT,
+             f"the scripts read solve.json format {case_check.SOLVE_FORMAT}, rksolve writes {cpp and cpp[1]}")
+other = tools.case("solve_format_7")
+shutil.copytree(upset, other)
+summary = json.loads((other / "solve.json").read_text())
+readers = ("taylor_metrics", "plot_taylor", "upsetting_check", "history_plots", "forming_report", "beam_check",
+           "elastic_bar_check", "pressure_oscillation")
+for content, says in ((json.dumps({**summary, "format": 7}), "written by another version of rksolve (format 7, this "
+                       f"script reads {case_check.SOLVE_FORMAT}); re-run rksolve on the case"),
+                      ('{"format": 1, "steps":', "cannot read it as JSON")):
+    (other / "solve.json").write_text(content)
+    for name in readers:
+        p = tools.run(["/usr/bin/python3", rkcase.ROOT / "scripts" / f"{name}.py", other], expect_ok=False)
+        lines = p.stderr.strip().splitlines()
+        rkcase.check(p.returncode == 1 and len(lines) == 1 and lines[0].startswith(f"{name}.py: {other / 'solve.json'}: {says}"),
+                     f"{name}.py: {p.stderr.strip()}")
+(other / "solve.json").unlink()
+p = tools.run(["/usr/bin/python3", rkcase.ROOT / "scripts" / "upsetting_check.py", other])
+rkcase.check("   10 %" in p.stdout, "upsetting_check.py reads a run without solve.json (one that did not finish)")

@@ -1,4 +1,4 @@
-"""Upsetting with Coulomb friction mu = 0.12 (BENCHMARKS.md case 2): the part barrels (the mid-plane
+"""Upsetting with Coulomb friction mu = 0.12 (geometry/upsetting/scene_friction.yaml): the part barrels (the mid-plane
 radius exceeds the radius at the die), the press needs more force than without friction, and the
 energy identity holds: press work = plastic + elastic (+ penalty) + kinetic + friction work, 1 %; the
 normalized Cockcroft-Latham damage is largest on the barrel's free surface at mid-height, where upset

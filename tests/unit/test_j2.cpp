@@ -1,4 +1,4 @@
-// J2 return mapping (BENCHMARKS.md section 6): uniaxial stress-strain curve against the closed form,
+// J2 return mapping: uniaxial stress-strain curve against the closed form,
 // stress on the yield surface after plastic steps, objectivity under a rigid rotation.
 #include <gtest/gtest.h>
 
@@ -103,7 +103,7 @@ TEST(J2, ElasticModelNeverYields) {
 }  // namespace
 
 TEST(J2, PowerLawHardeningFollowsTheCurve) {
-  // seed Table 4 aluminium: sigma = 576.79 (0.01658 + ep)^0.3593 MPa, initial yield 132.2 MPa
+  // aluminium of Table 4 of Wang et al. 2007: sigma = 576.79 (0.01658 + ep)^0.3593 MPa, initial yield 132.2 MPa
   const rk::J2Params al = rk::J2Params::power(71e9, 0.3, 576.79e6, 0.01658, 0.3593);
   EXPECT_NEAR(al.yield(0), 132.2e6, 0.05e6);
   double cp[6] = {1, 1, 1, 0, 0, 0}, ep = 0;

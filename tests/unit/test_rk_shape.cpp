@@ -1,4 +1,4 @@
-// Reproducing conditions of the RK shape functions (BENCHMARKS.md section 6): regular, 20 %-jittered
+// Reproducing conditions of the RK shape functions: regular, 20 %-jittered
 // and near-boundary particles, a/h = 1.5 and 2 (linear), 2.5 (quadratic).
 #include <gtest/gtest.h>
 
