@@ -825,6 +825,16 @@ double DieMotion::fastest() const {
   return v;
 }
 
+double DieMotion::reach(double t_end) const {
+  if (blows()) return std::numeric_limits<double>::infinity();
+  if (hydraulic()) return ram.stroke > 0 ? std::min(ram.stroke, speed * t_end) : speed * t_end;
+  if (cranked()) return stroke(std::min(t_end, crank.bottom_dead_centre()));  // rising to bottom dead centre
+  double s = stroke(t_end);  // piecewise linear: the farthest at a corner or at the end
+  for (const auto& [t, x] : curve.points())
+    if (t <= t_end) s = std::max(s, x);
+  return s;
+}
+
 double DieMotion::stroke(double t) const {
   if (cranked()) return crank.position(crank.angle(t)) - crank.position(crank.start_angle);
   return curve.empty() ? speed * t : curve.at(t);

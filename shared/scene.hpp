@@ -61,6 +61,8 @@ struct DieMotion {
   double stroke(double t) const;                  // m along `direction` (a motion not driven())
   double rate(double t) const;                    // d stroke / dt
   double fastest() const;                         // the largest |rate| over the motion (m/s)
+  // the farthest stroke over [0, t_end] (m); infinite for a blow, which goes as far as its energy takes it
+  double reach(double t_end) const;
 };
 
 struct Die {

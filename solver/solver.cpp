@@ -80,6 +80,7 @@ class Simulation {
   void displacement_update(double dt);
 
   void start_presses(double h_min);
+  void check_reach();
   void rebind();  // after a reference update: what is sized by the rank's local particles
   void write_frame(const std::vector<double>& velocity);
 
@@ -116,6 +117,7 @@ class Simulation {
   double last_checkpoint_wall_ = 0;
   double plastic_updates_ = 0, point_updates_ = 0;  // this run's stress updates, and those that were plastic
   double max_ebc_error_ = 0;
+  std::vector<std::string> start_warnings_;  // found at the start, also in solve.json
 };
 
 // The step, t^n -> t^{n+1}: positions at t^n and velocities v^{n-1/2} in, both one step on out.
@@ -467,6 +469,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   // rho c_L v_max at the density the run uses: mass scaling raises a tool's starting pressure with it
   pressure_bound_ = {std::sqrt(md_.density * md_.wave_modulus) * scales.v_start, scene_.health.max_pressure_ratio};
   start_presses(scales.h_min);
+  check_reach();
 
   last_checkpoint_wall_ = comm.wtime();
   setup_s_ = comm.wtime() - wall0_;
@@ -509,6 +512,42 @@ void Simulation::start_presses(double h_min) {
   presses_->place(st_, *dies_, false);
 }
 
+// A die whose whole travel over the run is shorter than its distance to the part along its motion
+// (a crank stroke shorter than the gap, a die in the wrong place) cannot form it: an error when the
+// part waits for it (at rest, no gravity, no other tool moving), a warning when something else may
+// bring the part to it. The distance is bounded below by the boxes' gap along the motion,
+// min over the part of X . d - max over the die of V . d, so no reachable die is refused.
+void Simulation::check_reach() {
+  const Scene& sc = scene_;
+  int movers = int(sc.prescribed_faces.size());
+  for (const Die& d : sc.dies) movers += d.motion.reach(sc.time.end) > 0 ? 1 : 0;
+  bool part_moves = norm(sc.loads.gravity) > 0 || norm(sc.initial.velocity) > 0;
+  for (double g : sc.initial.velocity_gradient) part_moves = part_moves || g != 0;
+  for (std::size_t k = 0; k < sc.dies.size(); ++k) {
+    const DieMotion& m = sc.dies[k].motion;
+    const double reach = m.reach(sc.time.end);
+    if (!(reach > 0) || std::isinf(reach)) continue;  // a die at rest waits for the part; a blow goes on
+    double part = 1e300, die = -1e300;
+    const double* d = m.direction.data();
+    for (std::size_t I = 0; I < md_.n; ++I) part = std::min(part, md_.X[3 * I] * d[0] + md_.X[3 * I + 1] * d[1] + md_.X[3 * I + 2] * d[2]);
+    comm_.min(&part, 1);
+    const DieSurface& surface = md_.dies[k];
+    for (std::size_t v = 0; v < surface.vertices.size() / 3; ++v) {
+      const double* x = &surface.vertices[3 * v];
+      die = std::max(die, x[0] * d[0] + x[1] * d[1] + x[2] * d[2]);
+    }
+    const double gap = part - die;
+    if (gap <= reach * (1 + 1e-9)) continue;
+    char text[400];
+    std::snprintf(text, sizeof text, "die '%s' moves %.4g mm over the run but starts %.4g mm from the part along its motion: "
+                  "it never reaches the part%s; lengthen its stroke or the run, or move it closer",
+                  sc.dies[k].name.c_str(), 1e3 * reach, 1e3 * gap, part_moves || movers > 1 ? " unless something brings the part to it" : "");
+    if (!part_moves && movers == 1) throw Error(text);
+    start_warnings_.push_back(text);
+    if (comm_.rank() == 0) std::fprintf(stderr, "rksolve: warning: %s\n", text);
+  }
+}
+
 // solve.json (io/run_report.hpp) and the closing line
 void Simulation::finish() {
   RunCounts counts;
@@ -516,10 +555,11 @@ void Simulation::finish() {
   counts.plastic_updates = plastic_updates_, counts.point_updates = point_updates_;
   counts.max_ebc_error = max_ebc_error_, counts.impact_pressure = pressure_bound_.impact;
   counts.frames = results_->frames();
+  counts.start_warnings = start_warnings_;
   if (presses_) {
     counts.presses = presses_->outcome(st_, scene_.dies);
     for (std::size_t r = 0; r < counts.presses.size(); ++r)
-      if (presses_->stalled(st_, r)) counts.press_warnings.push_back(counts.presses[r]);
+      if (presses_->stalled(st_, r)) counts.warnings.push_back(counts.presses[r]);
   }
   const RunSummary s = write_run_report(opt_.case_dir, scene_, md_, st_, clock_, *dies_, *ebc_, timer_, counts, comm_);
   progress_->done(st_.step, s.wall_s, s.ns_per_point_update, clock_.last_error);

@@ -28,7 +28,8 @@ struct RunCounts {
   double impact_pressure = 0;     // rho0 c_L v_max (Pa)
   std::int64_t frames = 0;
   std::vector<std::string> presses;         // how each press-driven die ended (the same on every rank)
-  std::vector<std::string> press_warnings;  // those that stalled short of their stroke
+  std::vector<std::string> warnings;        // the presses that stalled short of their stroke
+  std::vector<std::string> start_warnings;  // found (and printed) at the start
 };
 
 // Collective; returns the summary (complete on rank 0) after writing it to CASE/solve.json.

@@ -6,6 +6,7 @@ strokes per minute, from 151.8 degrees to bottom dead centre, 5 mm of stroke) at
   constant-speed press (the law is rate-independent), quasi-static;
 - a time.end past bottom dead centre is refused, naming the die and the time."""
 import csv
+import json
 import math
 
 import rkcase
@@ -45,3 +46,22 @@ rkcase.check(len(res["force"]) == 5 and res["max_kinetic_internal_ratio"] < 0.01
 out = tools.run([tools.bin / "rksolve", case, "--set", "time.end=0.08"], expect_ok=False)
 rkcase.check("runs past the bottom dead centre of die 'die' at 0.0783100" in out.stderr,
              f"past bottom dead centre refused: {out.stderr.strip()}")
+
+# A die whose whole stroke cannot reach the part: the die of this scene lifted 6 mm (its 5 mm to bottom
+# dead centre fall 1 mm short). With the part at rest and no other tool it is an error at the start;
+# with gravity on the part (it might fall onto the die) a warning in the log and solve.json.
+far = tools.work / "die_far.geo"
+far.write_text('SetFactory("OpenCASCADE");\nBox(1) = {-2, -2, 16, 20, 20, 3};\n')
+text = scene.read_text().replace("cad: die.geo", f"cad: {far}").replace("cad: billet.geo", f"cad: {scene.parent / 'billet.geo'}")
+far_scene = tools.work / "scene_far.yaml"
+far_scene.write_text(text)
+short = tools.case("crank_far")
+tools.prep(short, 1, scene=far_scene, sets=["discretization.spacing=2.5e-3"])
+out = tools.solve(short, 1, expect_ok=False)
+rkcase.check(out.returncode != 0 and "die 'die' moves 5 mm over the run but starts 6 mm from the part" in out.stderr,
+             f"a crank stroke shorter than the gap refused at the start: {out.stderr.strip().splitlines()[0]}")
+# (a short run; the energy check is not the point here: gravity on a mass-scaled part at rest)
+out = tools.solve(short, 1, sets=["loads.gravity=[0, 0, -9.81]", "time.end=0.002", "health.max_energy_error=10"])
+warned = json.load(open(short / "solve.json"))["warnings"]
+rkcase.check(any("unless something brings the part to it" in w for w in warned),
+             f"with gravity on the part, a warning: {[w for w in warned if 'moves' in w][0]}")
