@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli.hpp"
+#include "flow_lines.hpp"
 #include "h5file.hpp"
 #include "pictures.hpp"
 #include "report.hpp"
@@ -284,6 +285,19 @@ int run(int argc, char** argv) {
   const std::vector<int> chosen = select_frames(frame_list, solved ? int(frames) : 1);
   const auto [cells, cell_rank] = read_cells(case_dir, ranks, scene.prep_hash);
   std::vector<rk::PvdEntry> index;
+  // the flow lines' particles, chosen on the positions at t = 0 (post/flow_lines.hpp)
+  std::vector<rk::FlowLineSet> flow;
+  if (!scene.output.flow_lines.empty()) {
+    Frame start = prepared_frame(case_dir, ranks, {}, scene);
+    sort_by_global_id(start, {}, case_dir + " at t = 0");
+    for (const auto& spec : scene.output.flow_lines) {
+      flow.push_back(rk::select_flow_lines(spec, start.x, scene.discretization.spacing));
+      if (flow.back().particles.empty())
+        std::fprintf(stderr, "rkpost: warning: output.flow_lines '%s': no particle within half a spacing of its plane\n",
+                     spec.name.c_str());
+    }
+  }
+  const auto strain = std::find_if(fields.begin(), fields.end(), [](const Field& q) { return std::string(q.name) == "eq_plastic_strain"; });
   int skipped = 0;
   for (int f : chosen) {
     Frame fr;
@@ -317,6 +331,21 @@ int run(int argc, char** argv) {
                     die_fields(dies[k], fr, first_triangle), !uncompressed);
       first_triangle += dies[k].triangles.size() / 3;
       index.push_back({fr.time, int(k + 1), file, die.name});
+    }
+    for (std::size_t k = 0; k < flow.size(); ++k) {  // the flow lines through the particles' current positions
+      const auto& spec = scene.output.flow_lines[k];
+      std::vector<double> x;
+      rk::VtuArray ep{"eq_plastic_strain", 1, {}, {}};
+      for (std::int64_t I : flow[k].particles) {
+        x.insert(x.end(), &fr.x[3 * std::size_t(I)], &fr.x[3 * std::size_t(I)] + 3);
+        if (strain != fields.end()) ep.f64.push_back(fr.values[std::size_t(strain - fields.begin())][std::size_t(I)]);
+      }
+      std::vector<rk::VtuArray> data = {{"line", 1, {}, flow[k].line}};
+      if (!ep.f64.empty()) data.push_back(ep);
+      char file[160];
+      std::snprintf(file, sizeof file, "flow_%s_%05d.vtu", spec.name.c_str(), f);
+      rk::write_vtu(case_dir + "/vtk/" + file, x, data, flow[k].lines, {}, !uncompressed);
+      index.push_back({fr.time, int(dies.size() + 1 + k), file, spec.name});
     }
   }
   rk::write_pvd(case_dir + "/vtk/case.pvd", index);

@@ -731,6 +731,19 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
       t.point = p.vec3("point", std::nullopt);
       s.output.track.push_back(t);
     });
+    o.list("flow_lines", [&](Section& p) {
+      Scene::Output::FlowLines f;
+      f.name = p.text("name", "flow_lines" + std::to_string(s.output.flow_lines.size()));
+      for (const auto& other : s.output.flow_lines)
+        if (other.name == f.name) throw Error(name + ": key 'output.flow_lines': two sets named '" + f.name + "'");
+      f.point = p.vec3("point", std::nullopt);
+      f.normal = p.vec3("normal", std::nullopt, true);
+      f.direction = p.vec3("direction", std::nullopt, true);
+      if (std::abs(dot(f.normal, f.direction)) > 1e-6)
+        throw Error(p.where_of("direction") + ": the lines' direction must lie in their plane (normal to 'normal')");
+      f.spacing = p.number("spacing", 2 * s.discretization.spacing, {0, 1e3, true, false});
+      s.output.flow_lines.push_back(f);
+    });
     o.done();
   }
   {

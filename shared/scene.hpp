@@ -244,6 +244,15 @@ struct Scene {
       Vec3 point{};
     };
     std::vector<Track> track;
+    // material lines that rkpost draws through the deformed part (post/flow_lines.hpp), the picture
+    // forgers call grain flow: the particles within half a spacing of the plane (point, normal) at
+    // t = 0, in lines along `direction` (in the plane) `spacing` apart
+    struct FlowLines {
+      std::string name;
+      Vec3 point{}, normal{}, direction{};
+      double spacing = 0;  // m
+    };
+    std::vector<FlowLines> flow_lines;
   } output;
 
   // The bounds' reasons (docs/scene.md): 0.05 lies above the method's error on the shipped scenes

@@ -1,0 +1,37 @@
+#include "flow_lines.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace rk {
+
+FlowLineSet select_flow_lines(const Scene::Output::FlowLines& spec, const std::vector<double>& X, double h) {
+  const Vec3& n = spec.normal;
+  const Vec3& a = spec.direction;
+  const Vec3 e = {n[1] * a[2] - n[2] * a[1], n[2] * a[0] - n[0] * a[2], n[0] * a[1] - n[1] * a[0]};  // across the lines
+  std::map<std::int64_t, std::vector<std::pair<double, std::int64_t>>> lines;  // offset k: (position along, particle)
+  for (std::size_t I = 0; I < X.size() / 3; ++I) {
+    double d[3];
+    for (int i = 0; i < 3; ++i) d[i] = X[3 * I + i] - spec.point[i];
+    const double off_plane = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+    const double across = d[0] * e[0] + d[1] * e[1] + d[2] * e[2];
+    const auto k = std::int64_t(std::llround(across / spec.spacing));
+    if (std::abs(off_plane) > 0.5 * h || std::abs(across - double(k) * spec.spacing) > 0.5 * h) continue;
+    lines[k].push_back({d[0] * a[0] + d[1] * a[1] + d[2] * a[2], std::int64_t(I)});
+  }
+  FlowLineSet set;
+  for (auto& [k, line] : lines) {
+    if (line.size() < 2) continue;
+    std::sort(line.begin(), line.end());
+    const auto first = std::int64_t(set.particles.size()), number = first == 0 ? 0 : set.line.back() + 1;
+    for (const auto& [along, I] : line) set.particles.push_back(I), set.line.push_back(number);
+    for (auto p = first; p + 1 < std::int64_t(set.particles.size()); ++p) {
+      const std::int64_t segment[2] = {p, p + 1};
+      set.lines.add(segment, 2, 3);  // VTK_LINE
+    }
+  }
+  return set;
+}
+
+}  // namespace rk
