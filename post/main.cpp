@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli.hpp"
+#include "die_fill_regions.hpp"
 #include "flow_lines.hpp"
 #include "h5file.hpp"
 #include "pictures.hpp"
@@ -69,7 +70,7 @@ Frame read_frame(const std::string& case_dir, int ranks, int f, const std::vecto
       fr.die_stroke = h.read<double>(g + rk::kDieStroke);
       const auto load = h.read<std::int64_t>(g + rk::kDieLoad, 4);
       const auto touched = h.read<std::int64_t>(g + rk::kDieTouched);
-      if (r == 0) die_sum.assign(load.size(), 0), fr.die_touched.assign(touched.size(), 0.0);
+      if (r == 0) die_sum.assign(load.size(), 0), fr.die_touched.assign(touched.size(), -1.0);
       if (load.size() != die_sum.size() || touched.size() != fr.die_touched.size())
         throw rk::Error(path + ": its die surfaces differ from rank 0's");
       for (std::size_t k = 0; k < load.size(); ++k) die_sum[k] += load[k];
@@ -299,6 +300,7 @@ int run(int argc, char** argv) {
   }
   const auto strain = std::find_if(fields.begin(), fields.end(), [](const Field& q) { return std::string(q.name) == "eq_plastic_strain"; });
   int skipped = 0;
+  std::vector<std::string> fill;  // the dies' fill at the last frame written
   for (int f : chosen) {
     Frame fr;
     try {  // a frame missing on a rank or half written is reported and skipped; the rest is merged
@@ -329,6 +331,13 @@ int run(int argc, char** argv) {
       std::snprintf(file, sizeof file, "die_%s_%05d.vtu", die.name.c_str(), f);
       rk::write_vtu(case_dir + "/vtk/" + file, x, {}, rk::VtuCells::triangles(dies[k].triangles),
                     die_fields(dies[k], fr, first_triangle), !uncompressed);
+      if (k == 0) fill.clear();
+      if (fr.die_touched.size() >= first_triangle + dies[k].triangles.size() / 3) {
+        const std::vector<double> touched(fr.die_touched.begin() + std::ptrdiff_t(first_triangle),
+                                          fr.die_touched.begin() + std::ptrdiff_t(first_triangle + dies[k].triangles.size() / 3));
+        const double shift[3] = {stroke * die.motion.direction[0], stroke * die.motion.direction[1], stroke * die.motion.direction[2]};
+        fill.push_back(rk::describe_fill(die.name, dies[k], touched, shift));
+      }
       first_triangle += dies[k].triangles.size() / 3;
       index.push_back({fr.time, int(k + 1), file, die.name});
     }
@@ -356,7 +365,7 @@ int run(int argc, char** argv) {
     return 0;
   }
   if (!no_pictures) rk::make_pictures(case_dir, quiet);  // before the report, which lists them
-  rk::write_report(case_dir);
+  rk::write_report(case_dir, fill);
   if (!fs::exists(case_dir + "/solve.json"))  // a run a health check stopped: its frames are there to look at
     std::fprintf(stderr, "rkpost: warning: %s has no solve.json: the run did not finish (report.md says so)\n",
                  case_dir.c_str());

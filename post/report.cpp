@@ -35,7 +35,7 @@ std::string num(double x, int digits = 4) {
 std::string num(const nlohmann::json& j, int digits = 4) { return j.is_number() ? num(j.get<double>(), digits) : "-"; }
 }  // namespace
 
-void write_report(const std::string& case_dir) {
+void write_report(const std::string& case_dir, const std::vector<std::string>& fill_lines) {
   namespace fs = std::filesystem;
   std::ifstream prep_file(case_dir + "/prep.json"), hist(case_dir + "/history.csv");
   const auto prep = nlohmann::json::parse(prep_file);
@@ -143,6 +143,8 @@ void write_report(const std::string& case_dir) {
          "(the dies' field `touched` in ParaView shows where; `contact_pressure` and `contact_shear` the loads).\n\n"
          "| die | filled |\n|---|---|\n";
     for (const auto& [die, f] : fill) r << "| " << die << " | " << num(100 * f, 3) << " % |\n";
+    if (!fill_lines.empty()) r << "\nAt the last frame:\n\n";
+    for (const auto& line : fill_lines) r << "- " << line << "\n";
   }
   std::erase_if(presses, [](const Press& p) { return p.travel == 0; });  // a die at rest is no press
   if (!presses.empty()) {

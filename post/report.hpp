@@ -2,9 +2,11 @@
 // and whether to trust it (energy balance verdict, final energies, die forces), in one page.
 #pragma once
 #include <string>
+#include <vector>
 
 namespace rk {
 
-void write_report(const std::string& case_dir);
+// `fill`: a line per die on its fill at the last frame (post/die_fill_regions.hpp), or none
+void write_report(const std::string& case_dir, const std::vector<std::string>& fill = {});
 
 }  // namespace rk

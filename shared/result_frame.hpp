@@ -40,8 +40,9 @@ inline constexpr FrameField kDamageFields[] = {{"damage_cockcroft_latham", 1, "-
 // With dies, over all dies' triangles in order (die k's after die k-1's): every die's stroke along
 // its direction (m); this rank's contact loads on each triangle, 4 fixed-point integers (the normal
 // force, >= 0, and the tangential force on the die, x y z) that sum over the ranks exactly, times
-// die_load_scale (N per unit, one value); whether this rank's material has touched the triangle so
-// far (0 / 1).
+// die_load_scale (N per unit, one value); 1 where this rank's material has touched the triangle so
+// far, else 0 on the die's working surface (facing the part) and -1 off it: the ranks' maximum is the
+// die fill.
 inline constexpr const char* kDieStroke = "die_stroke";
 inline constexpr const char* kDieLoad = "die_load";
 inline constexpr const char* kDieLoadScale = "die_load_scale";

@@ -52,7 +52,9 @@ DieFrame DieFill::frame(const DieContact& dies, double t, const Comm& comm) cons
   const FixedScale scale = FixedScale::for_bound(bound, headroom_);
   f.load_scale = scale.to_double;
   dies.surface_loads(scale, f.load);
-  f.touched = dies.touched();
+  f.touched = dies.touched();  // 1: touched; else 0 on the working surface, -1 off it
+  for (std::size_t t = 0; t < f.touched.size(); ++t)
+    if (f.touched[t] == 0 && !(working_[t] > 0)) f.touched[t] = -1;
   return f;
 }
 

@@ -14,7 +14,8 @@ namespace rk {
 
 // A frame's die datasets (shared/result_frame.hpp, kDieFrame*): every die's stroke; this rank's loads
 // per triangle (normal force, tangential force on the die) in fixed point at a scale common to all
-// ranks, so their sum over ranks is the same on any partition; its touched flags.
+// ranks, so their sum over ranks is the same on any partition; per triangle 1 where its material has
+// touched it, else 0 on the working surface and -1 off it (the same on every rank).
 struct DieFrame {
   std::vector<double> stroke;
   double load_scale = 0;  // N per fixed-point unit

@@ -125,13 +125,19 @@ area, die = die_fields(one)
 total = 4 * (die["contact_pressure"] * area).sum()
 rkcase.check(abs(total / float(end["ram.force"]) - 1) < 1e-9,
              f"the die's contact pressure over its triangles sums to the ram's force ({total / 1e3:.4f} kN)")
-touched = (die["touched"] * area).sum()
+touched = ((die["touched"] == 1) * area).sum()
+working = ((die["touched"] >= 0) * area).sum()  # 0: untouched on the face toward the part; -1: off it
+rkcase.check(abs(working - 4e-4) < 1e-12, f"the die's working surface is its 20 x 20 mm face toward the part "
+             f"({1e6 * working:.1f} mm^2)")
 top = x[:, 2].max()
 radius = np.hypot(x[x[:, 2] > top - 1e-4, 0], x[x[:, 2] > top - 1e-4, 1]).max()
 face = math.pi * radius ** 2 / 4
 rkcase.check(1.0 <= touched / face < 1.4 and abs(float(end["ram.filled"]) - touched / 4e-4) < 1e-6,
              f"touched {1e6 * touched:.1f} mm^2 of the die, the billet's end face {1e6 * face:.1f} mm^2; filled "
              f"{100 * float(end['ram.filled']):.2f} % of its 400 mm^2 toward the part")
+report = (one / "report.md").read_text()
+rkcase.check(f"{100 * float(end['ram.filled']):.3g} % of its working surface filled" in report and "unfilled region" in report,
+             "report.md gives the fill and the unfilled region: " + [l for l in report.splitlines() if "working surface" in l][0])
 
 two_ranks = copy(prep2, "hammer_2")
 tools.solve(two_ranks, 2)
