@@ -723,19 +723,22 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     Section o = top.section("output");
     s.output.checkpoint_steps = o.integer("checkpoint_steps", int(s.output.checkpoint_steps), 0, 1000000000);
     s.output.checkpoint_minutes = o.number("checkpoint_minutes", s.output.checkpoint_minutes, {0, 1e6});
+    // an entry's name, `fallback` where it has none, unique in its list
+    auto unique_name = [&](Section& p, const auto& list, const char* key, const std::string& fallback) {
+      const std::string n = p.text("name", fallback);
+      for (const auto& other : list)
+        if (other.name == n) throw Error(name + ": key 'output." + key + "': two entries named '" + n + "'");
+      return n;
+    };
     o.list("track", [&](Section& p) {
       Scene::Output::Track t;
-      t.name = p.text("name", "p" + std::to_string(s.output.track.size()));
-      for (const auto& other : s.output.track)
-        if (other.name == t.name) throw Error(name + ": key 'output.track': two tracks named '" + t.name + "'");
+      t.name = unique_name(p, s.output.track, "track", "p" + std::to_string(s.output.track.size()));
       t.point = p.vec3("point", std::nullopt);
       s.output.track.push_back(t);
     });
     o.list("flow_lines", [&](Section& p) {
       Scene::Output::FlowLines f;
-      f.name = p.text("name", "flow_lines" + std::to_string(s.output.flow_lines.size()));
-      for (const auto& other : s.output.flow_lines)
-        if (other.name == f.name) throw Error(name + ": key 'output.flow_lines': two sets named '" + f.name + "'");
+      f.name = unique_name(p, s.output.flow_lines, "flow_lines", "flow_lines" + std::to_string(s.output.flow_lines.size()));
       f.point = p.vec3("point", std::nullopt);
       f.normal = p.vec3("normal", std::nullopt, true);
       f.direction = p.vec3("direction", std::nullopt, true);
