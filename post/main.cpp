@@ -181,11 +181,12 @@ std::pair<rk::VtuCells, std::vector<std::int64_t>> read_cells(const std::string&
 
 // --fields: a comma-separated subset of kFields ("all": every one).
 // thermal: how many of kThermalFields the frames hold (0 without a temperature; 1, the temperature
-// alone, in frames of rksolve before 2026-12-02); damage: the frames hold kDamageFields
-std::vector<Field> select_fields(const std::string& list, int thermal, bool damage) {
+// alone, in frames of rksolve before 2026-12-02); damage: how many of kDamageFields they hold (0
+// without damage; 2, without Oyane's, in frames of rksolve before 2026-12-02)
+std::vector<Field> select_fields(const std::string& list, int thermal, int damage) {
   std::vector<Field> known(std::begin(kFields), std::end(kFields));
   known.insert(known.end(), std::begin(rk::kThermalFields), std::begin(rk::kThermalFields) + thermal);
-  if (damage) known.insert(known.end(), std::begin(rk::kDamageFields), std::end(rk::kDamageFields));
+  known.insert(known.end(), std::begin(rk::kDamageFields), std::begin(rk::kDamageFields) + damage);
   if (list == "all") return known;
   std::vector<Field> out;
   std::stringstream ss(list);
@@ -277,10 +278,10 @@ int run(int argc, char** argv) {
       thermal = 1;
   }
   // the damage fields where the frames hold them (a `damage` section, in the scene or set at rksolve)
-  bool damage = false;
-  if (solved) {
-    const std::string first = rk::result_frame_path(case_dir, 0, 0);
-    damage = fs::exists(first) && rk::H5File(first, rk::H5File::Mode::read).exists(rk::result_frame_group(0) + rk::kDamageFields[0].name);
+  int damage = 0;
+  if (solved && fs::exists(rk::result_frame_path(case_dir, 0, 0))) {
+    const rk::H5File first(rk::result_frame_path(case_dir, 0, 0), rk::H5File::Mode::read);
+    while (damage < int(std::size(rk::kDamageFields)) && first.exists(rk::result_frame_group(0) + rk::kDamageFields[damage].name)) ++damage;
   }
   const std::vector<Field> fields = select_fields(field_list, thermal, damage);
   const std::vector<int> chosen = select_frames(frame_list, solved ? int(frames) : 1);

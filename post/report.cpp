@@ -139,7 +139,7 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
   for (std::size_t k = 0; k < names.size() && k < values.size(); ++k)
     if (names[k].ends_with(".filled")) fill.push_back({names[k].substr(0, names[k].size() - 7), std::stod(values[k])});
   if (!fill.empty()) {
-    r << "\n## Die fill\n\nThe share of each die's surface that faces the part which the material has touched "
+    r << "\n## Die fill\n\nThe share of each die's surface that faces the part (within the modeled sector) which the material has touched "
          "(the dies' field `touched` in ParaView shows where; `contact_pressure` and `contact_shear` the loads).\n\n"
          "| die | filled |\n|---|---|\n";
     for (const auto& [die, f] : fill) r << "| " << die << " | " << num(100 * f, 3) << " % |\n";

@@ -39,7 +39,8 @@ inline constexpr HistoryColumn kTemperatureColumns[] = {
 inline constexpr HistoryColumn kConductionColumns[] = {{"heat_to_ambient", "J"}};
 
 // With a `damage` section: each criterion's largest value over the part's points.
-inline constexpr HistoryColumn kDamageColumns[] = {{"damage_cockcroft_latham_max", "-"}, {"damage_brozzo_max", "-"}};
+inline constexpr HistoryColumn kDamageColumns[] = {
+    {"damage_cockcroft_latham_max", "-"}, {"damage_brozzo_max", "-"}, {"damage_oyane_max", "-"}};
 
 // The scene's columns in order: the scalars, then its walls', dies' and faces' columns.
 std::vector<std::string> history_columns(const Scene& scene);

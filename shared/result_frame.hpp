@@ -35,7 +35,8 @@ inline constexpr FrameField kThermalFields[] = {
 
 // Written only where the scene has a `damage` section: the criteria of solver/material/damage.hpp
 // (0 for one the scene does not ask for).
-inline constexpr FrameField kDamageFields[] = {{"damage_cockcroft_latham", 1, "-"}, {"damage_brozzo", 1, "-"}};
+inline constexpr FrameField kDamageFields[] = {
+    {"damage_cockcroft_latham", 1, "-"}, {"damage_brozzo", 1, "-"}, {"damage_oyane", 1, "-"}};
 
 // With dies, over all dies' triangles in order (die k's after die k-1's): every die's stroke along
 // its direction (m); this rank's contact loads on each triangle, 4 fixed-point integers (the normal

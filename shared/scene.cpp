@@ -673,9 +673,16 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     };
     criterion("cockcroft_latham", s.damage.cockcroft_latham, s.damage.cockcroft_latham_critical);
     criterion("brozzo", s.damage.brozzo, s.damage.brozzo_critical);
+    if (d.given() && d.get("oyane", false)) {  // with its material constant
+      s.damage.oyane = true;
+      Section c = d.section("oyane");
+      s.damage.oyane_a = c.number("a", std::nullopt, {0, 100, true, false});
+      s.damage.oyane_critical = c.number("critical", 0.0, {0, 1e3});
+      c.done();
+    }
     d.done();
     if (d.given() && !s.damage.on())
-      throw Error(name + ": section 'damage' names no criterion (cockcroft_latham, brozzo)");
+      throw Error(name + ": section 'damage' names no criterion (cockcroft_latham, brozzo, oyane)");
   }
   {
     Section c = top.section("contact");

@@ -202,9 +202,10 @@ struct Scene {
   // Ductile damage integrated at the integration points (solver/material/damage.hpp), each criterion
   // only where its key is given; a critical value > 0 marks where a crack is predicted.
   struct Damage {
-    bool cockcroft_latham = false, brozzo = false;
-    double cockcroft_latham_critical = 0, brozzo_critical = 0;
-    bool on() const { return cockcroft_latham || brozzo; }
+    bool cockcroft_latham = false, brozzo = false, oyane = false;
+    double cockcroft_latham_critical = 0, brozzo_critical = 0, oyane_critical = 0;
+    double oyane_a = 0;  // Oyane's material constant a
+    bool on() const { return cockcroft_latham || brozzo || oyane; }
   } damage;
 
   struct Contact {

@@ -98,7 +98,8 @@ struct Model {
                                  : std::cbrt(density_table.at(initial_temperature) / density_table.at(T));
   }
   double wave_modulus = 0;  // K + 4G/3, for the dilatational wave speed
-  bool damage_cockcroft_latham = false, damage_brozzo = false;  // the criteria the scene asks for
+  bool damage_cockcroft_latham = false, damage_brozzo = false, damage_oyane = false;  // the criteria the scene asks for
+  double oyane_a = 0;                                                                  // Oyane's constant
   bool fbar = true;
 };
 

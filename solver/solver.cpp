@@ -24,6 +24,7 @@
 #include "io/progress.hpp"
 #include "io/run_report.hpp"
 #include "material/bulk_viscosity.hpp"
+#include "material/damage.hpp"
 #include "material/stress_update.hpp"
 #include "model.hpp"
 #include "parallel/overlap_exchange.hpp"
@@ -400,7 +401,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   if (rates) st_.plastic_rate.assign(md_.m, 0.0);
   if (md_.thermal_strain()) st_.stretch_last.assign(md_.m, 0.0);
   if (scene_.damage.on()) {
-    st_.damage.assign(2 * md_.m, 0.0);
+    st_.damage.assign(kDamageCriteria * md_.m, 0.0);
     std::int64_t crowded = -1;  // a cell with more points than the damage's per-cell scratch holds
     for (std::size_t c = 0; md_.fbar && c < md_.cells && crowded < 0; ++c)
       if (std::size_t(md_.cell_points[c + 1] - md_.cell_points[c]) > kMaxCellPoints) crowded = std::int64_t(c);
@@ -422,7 +423,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   ebc_ = collectively(comm, [&] { return std::make_unique<EssentialBcs>(md_, scene_, comm); });
   ebc_->apply(md_, st_, 0.0, 0.0, 0.0, st_.v);  // initial velocities that meet the conditions' rates
   dies_ = std::make_unique<DieContact>(md_, scene_, md_.dies);
-  if (!md_.dies.empty()) fill_ = std::make_unique<DieFill>(md_, *dies_, comm);
+  if (!md_.dies.empty()) fill_ = std::make_unique<DieFill>(md_, scene_, *dies_, comm);
   clock_.dt_stable = dt0;  // the last unclipped global stable step: the stick force's step
   clock_.dt_penalty = dt0;  // and the smallest so far: the penalty stiffness
   clock_.kinetic0 = compute_energies(md_, st_, st_.v, comm).kinetic;

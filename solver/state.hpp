@@ -65,8 +65,8 @@ struct State {
   // int tr(tau) d ln(stretch), on this rank's points: part of the internal energy (the stress's work on
   // the whole strain), which the stored energy psi of the mechanical strain alone leaves out
   std::vector<double> stretch_last;
-  // ductile damage (Scene::damage; empty without it): 2 per point, normalized Cockcroft-Latham and
-  // Brozzo (material/damage.hpp), each 0 where the scene does not ask for it
+  // ductile damage (Scene::damage; empty without it): kDamageCriteria per point, normalized
+  // Cockcroft-Latham, Brozzo and Oyane (material/damage.hpp), each 0 where the scene does not ask for it
   std::vector<double> damage;
   double thermal_work = 0;
   std::int64_t contacts = 0;

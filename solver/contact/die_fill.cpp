@@ -5,7 +5,7 @@
 
 namespace rk {
 
-DieFill::DieFill(const Model& md, const DieContact& dies, const Comm& comm) {
+DieFill::DieFill(const Model& md, const Scene& scene, const DieContact& dies, const Comm& comm) {
   double c[4] = {0, 0, 0, 0};  // the part's centre of mass at t = 0
   for (std::size_t I = 0; I < md.n; ++I)
     if (md.owned[I])
@@ -23,7 +23,18 @@ DieFill::DieFill(const Model& md, const DieContact& dies, const Comm& comm) {
       n[1] = (b[2] - a[2]) * (d[0] - a[0]) - (b[0] - a[0]) * (d[2] - a[2]);
       n[2] = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
       for (int i = 0; i < 3; ++i) toward += n[i] * (c[i] / c[3] - (a[i] + b[i] + d[i]) / 3);
-      working_.push_back(toward > 0 ? 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) : 0.0);
+      bool modeled = true;  // a corner on the part's side of every symmetry plane (within its round-off)
+      for (const SymmetryPlane& p : scene.symmetry_planes) {
+        double part = 0, side = -1e300;
+        for (int i = 0; i < 3; ++i) part += (c[i] / c[3] - p.point[i]) * p.normal[i];
+        for (const double* v : {a, b, d}) {
+          double here = 0;
+          for (int i = 0; i < 3; ++i) here += (v[i] - p.point[i]) * p.normal[i];
+          side = std::max(side, here * (part < 0 ? -1.0 : 1.0));
+        }
+        modeled = modeled && side >= -1e-9 * std::abs(part);
+      }
+      working_.push_back(toward > 0 && modeled ? 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) : 0.0);
     }
   }
   flags_.resize(working_.size());

@@ -1,7 +1,8 @@
 // What the material does to the dies' surfaces: the contact loads on every triangle at a frame, and
 // which triangles it has touched so far (DieContact keeps both per rank). A die's filled fraction is
 // the touched share of its working surface, the triangles that face the part (outward normal toward
-// the part's centre of mass at t = 0): a closed die's cavity, a flat die's face, not its back or sides.
+// the part's centre of mass at t = 0) reaching the modeled side of every symmetry plane (a corner there):
+// a closed die's cavity within the modeled sector, a flat die's face, not its back or sides.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -25,7 +26,7 @@ struct DieFrame {
 
 class DieFill {
  public:
-  DieFill(const Model& md, const DieContact& dies, const Comm& comm);
+  DieFill(const Model& md, const Scene& scene, const DieContact& dies, const Comm& comm);
   // Collective: each die's filled fraction (its touched working area over its working area)
   const std::vector<double>& filled(const DieContact& dies, const Comm& comm);
   // Collective: the frame's die datasets at time t

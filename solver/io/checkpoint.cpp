@@ -7,6 +7,7 @@
 #include "error.hpp"
 #include "h5file.hpp"
 #include "io/durable_file.hpp"
+#include "material/damage.hpp"
 
 namespace rk {
 
@@ -58,7 +59,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     }
     if (!st.temperature.empty()) f.write("points/temperature", st.temperature);
     if (!st.stretch_last.empty()) f.write("points/stretch_last", st.stretch_last);
-    if (!st.damage.empty()) f.write("points/damage", st.damage, 2);
+    if (!st.damage.empty()) f.write("points/damage", st.damage, kDamageCriteria);
     if (!st.plastic_rate.empty()) f.write("points/plastic_rate", st.plastic_rate);
     if (!st.particle_temperature.empty()) {  // conduction (thermal/heat_transfer.hpp)
       f.write("particles/temperature", st.particle_temperature);
@@ -91,7 +92,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
                (contact.touched().empty() || check.read<std::int64_t>("dies/touched") == contact.touched()) &&
                (st.temperature.empty() || check.read<double>("points/temperature") == st.temperature) &&
                (st.stretch_last.empty() || check.read<double>("points/stretch_last") == st.stretch_last) &&
-               (st.damage.empty() || check.read<double>("points/damage", 2) == st.damage) &&
+               (st.damage.empty() || check.read<double>("points/damage", kDamageCriteria) == st.damage) &&
                (st.plastic_rate.empty() || check.read<double>("points/plastic_rate") == st.plastic_rate) &&
                (st.particle_temperature.empty() || (check.read<double>("particles/temperature") == st.particle_temperature &&
                                                     check.read<double>("points/heat_pending") == st.heat_pending &&
@@ -224,8 +225,8 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
   if (!st.damage.empty()) {
     if (!f.exists("points/damage"))
       throw Error(path + ": the checkpoint holds no damage (written without a 'damage' section); restart with the same scene");
-    st.damage = f.read<double>("points/damage", 2);
-    if (st.damage.size() != 2 * md.m) throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
+    st.damage = f.read<double>("points/damage", kDamageCriteria);
+    if (st.damage.size() != kDamageCriteria * md.m) throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
   }
   if (!st.plastic_rate.empty()) {  // shear friction's flow stress takes the rate
     if (!f.exists("points/plastic_rate"))

@@ -6,6 +6,7 @@
 
 #include "error.hpp"
 #include "history_columns.hpp"
+#include "material/damage.hpp"
 
 namespace rk {
 namespace {
@@ -101,11 +102,10 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
   for (std::size_t k = 0; k < kSumCount; ++k) sums_[k] = s.*kSumFields[k];
   comm.sum(sums_.data(), int(sums_.size()));
   for (std::size_t k = 0; k < kSumCount; ++k) s.*kSumFields[k] = sums_[k];
-  double damage[2] = {0, 0};  // the criteria's largest values (empty without damage)
-  for (std::size_t g = 0; 2 * g < st.damage.size(); ++g)
-    damage[0] = std::max(damage[0], st.damage[2 * g]), damage[1] = std::max(damage[1], st.damage[2 * g + 1]);
-  double worst[7] = {penetration, ebc.max_error(md, st, st.t), dies.symmetry_depth(), -coolest, hottest, damage[0], damage[1]};
-  comm.max(worst, 7);
+  // then the damage criteria's largest values (0 without damage)
+  double worst[5 + kDamageCriteria] = {penetration, ebc.max_error(md, st, st.t), dies.symmetry_depth(), -coolest, hottest};
+  for (std::size_t k = 0; k < st.damage.size(); ++k) worst[5 + k % kDamageCriteria] = std::max(worst[5 + k % kDamageCriteria], st.damage[k]);
+  comm.max(worst, int(std::size(worst)));
   out.ebc_error = worst[1];
 
   // The balance of the part (docs/scene.md, "Energy"): KE + internal = KE0 + W_ext + W_contact, with
@@ -128,7 +128,7 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
     for (double v : {s.heat / volume0_, -worst[3], worst[4]}) row_[c++] = v;
   const bool conducting = !st.particle_temperature.empty();
   if (conducting) row_[c++] = s.ambient_heat;
-  if (!st.damage.empty()) row_[c++] = worst[5], row_[c++] = worst[6];
+  for (std::size_t k = 0; k < kDamageCriteria && !st.damage.empty(); ++k) row_[c++] = worst[5 + k];
   for (std::size_t w = 0; w < walls; ++w) row_[c++] = sums_[kSumCount + w];
   std::size_t ram = 0;  // the press-driven dies' rams, in die order
   for (std::size_t d = 0; d < dies.size(); ++d) {

@@ -12,6 +12,7 @@
 #include "io/durable_file.hpp"
 #include "result_frame.hpp"
 #include "rk/internal_force.hpp"
+#include "material/damage.hpp"
 #include "rk/kinematics.hpp"
 
 namespace rk {
@@ -19,8 +20,8 @@ namespace {
 
 // weight, eq_plastic_strain, von_mises, pressure, Cauchy stress (xx, yy, zz, xy, yz, zx); where the
 // material has a temperature the temperature, the plastic strain rate and the flow stress; with damage
-// its two criteria
-constexpr int kBase = 10, kThermal = 3, kDamage = 2, kProjected = kBase + kThermal + kDamage;
+// its criteria
+constexpr int kBase = 10, kThermal = 3, kDamage = int(kDamageCriteria), kProjected = kBase + kThermal + kDamage;
 constexpr int kStress = 4;  // the first stress component's column
 
 
@@ -44,7 +45,7 @@ void cauchy_measures(const double* tau, double J, double& von_mises, double& pre
 ResultWriter::ResultWriter(const std::string& case_dir, const Model& md, const std::string& scene_hash,
                            std::int64_t resume_frames)
     : case_dir_(case_dir), scene_hash_(scene_hash), thermal_col_(md.heat_capacity > 0 ? kBase : -1),
-      damage_col_(md.damage_cockcroft_latham || md.damage_brozzo ? kBase + (thermal_col_ > 0 ? kThermal : 0) : -1),
+      damage_col_(md.damage_cockcroft_latham || md.damage_brozzo || md.damage_oyane ? kBase + (thermal_col_ > 0 ? kThermal : 0) : -1),
       projected_(kBase + (thermal_col_ > 0 ? kThermal : 0) + (damage_col_ > 0 ? kDamage : 0)),
       exchange_(md, projected_), partial_(std::size_t(projected_) * md.n) {
   const std::string dir = result_frame_dir(case_dir, md.rank);
@@ -79,7 +80,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
       values[thermal_col_] = point_heat(st, g), values[thermal_col_ + 1] = rate;
       values[thermal_col_ + 2] = md.material.flow_stress(st.ep[g], rate, st.temperature[g]);
     }
-    if (damage_col_ > 0) values[damage_col_] = st.damage[2 * g], values[damage_col_ + 1] = st.damage[2 * g + 1];
+    for (int k = 0; damage_col_ > 0 && k < kDamage; ++k) values[damage_col_ + k] = st.damage[kDamageCriteria * g + std::size_t(k)];
     double nmax = 0;
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) nmax = std::max(nmax, std::abs(md.N[k]));
     for (int c = 0; c < np; ++c) {
@@ -101,7 +102,8 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
 
   // Displacements: the material's, u^h(X_I) = sum_J N_J(X_I) d_J (RK coefficients are not values).
   std::vector<std::int64_t> gid;
-  std::vector<double> x, u, v, ep, vm, pr, sigma, temperature, rate, flow, cockcroft_latham, brozzo;
+  std::vector<double> x, u, v, ep, vm, pr, sigma, temperature, rate, flow;
+  std::vector<double> damage[kDamageCriteria];
   for (std::size_t I = 0; I < md.n; ++I) {
     if (!md.owned[I]) continue;
     gid.push_back(md.global_id[I]);
@@ -130,7 +132,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
       temperature.push_back(T + value(thermal_col_));
       rate.push_back(value(thermal_col_ + 1)), flow.push_back(value(thermal_col_ + 2));
     }
-    if (damage_col_ > 0) cockcroft_latham.push_back(value(damage_col_)), brozzo.push_back(value(damage_col_ + 1));
+    for (int k = 0; damage_col_ > 0 && k < kDamage; ++k) damage[k].push_back(value(damage_col_ + k));
   }
   const std::string path = result_frame_path(case_dir_, md.rank, frames_), tmp = path + ".tmp";
   try {
@@ -157,9 +159,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     if (thermal_col_ > 0)
       for (const auto& [field, data] : {std::pair{kThermalFields[0], &temperature}, {kThermalFields[1], &rate}, {kThermalFields[2], &flow}})
         f.write(g + field.name, *data);
-    if (damage_col_ > 0)
-      for (const auto& [field, data] : {std::pair{kDamageFields[0], &cockcroft_latham}, {kDamageFields[1], &brozzo}})
-        f.write(g + field.name, *data);
+    for (std::size_t k = 0; damage_col_ > 0 && k < kDamageCriteria; ++k) f.write(g + kDamageFields[k].name, damage[k]);
     f.close();
   } catch (const Error&) {  // no partial frame is left behind
     std::error_code ignored;

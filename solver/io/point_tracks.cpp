@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "io/output.hpp"
+#include "material/damage.hpp"
 #include "rk/kinematics.hpp"
 
 namespace rk {
@@ -14,7 +15,7 @@ PointTracks::PointTracks(const std::string& case_dir, const Scene& scene, const 
   const auto& tracks = scene.output.track;
   if (tracks.empty()) return;
   const bool thermal = scene.material.thermal(), damage = scene.damage.on();
-  values_ = 6 + (thermal ? 1 : 0) + (damage ? 2 : 0);
+  values_ = 6 + (thermal ? 1 : 0) + (damage ? int(kDamageCriteria) : 0);
   for (const auto& t : tracks) {
     // the nearest owned particle at t = 0, then the lowest global id among the equally near
     double best = std::numeric_limits<double>::infinity(), id = best, spacing = 0;
@@ -42,7 +43,7 @@ PointTracks::PointTracks(const std::string& case_dir, const Scene& scene, const 
     for (const char* q : {".x", ".y", ".z", ".eq_plastic_strain", ".von_mises", ".pressure"}) columns.push_back(t.name + q);
     if (thermal) columns.push_back(t.name + ".temperature");
     if (damage)
-      for (const char* q : {".damage_cockcroft_latham", ".damage_brozzo"}) columns.push_back(t.name + q);
+      for (const auto& q : kDamageFields) columns.push_back(t.name + "." + q.name);
   }
   writer_ = collectively(comm, [&] {
     return comm.rank() == 0 ? std::make_unique<HistoryWriter>(case_dir + "/tracks.csv", columns, resume_time) : nullptr;
@@ -79,7 +80,7 @@ void PointTracks::record(const Model& md, const State& st, const Comm& comm) {
       s[4] += a * st.ep[g], s[5] += a * vm, s[6] += a * p;
       int c = 7;
       if (!st.temperature.empty()) s[c++] += a * st.temperature[g];
-      if (!st.damage.empty()) s[c] += a * st.damage[2 * g], s[c + 1] += a * st.damage[2 * g + 1];
+      for (std::size_t k = 0; k < kDamageCriteria && !st.damage.empty(); ++k) s[c++] += a * st.damage[kDamageCriteria * g + k];
     }
   comm.sum(sums_.data(), int(sums_.size()));
   row_[0] = st.t;

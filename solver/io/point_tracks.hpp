@@ -1,7 +1,7 @@
 // CASE/tracks.csv: the history of chosen material points (output.track), one row per history row:
 // time, then per track NAME its current position NAME.x, .y, .z (the material's, X + u^h(X)) and its
 // NAME.eq_plastic_strain, .von_mises, .pressure, with a temperature .temperature, with damage
-// .damage_cockcroft_latham and .damage_brozzo: the values of the particle nearest the track's point
+// .damage_cockcroft_latham, .damage_brozzo and .damage_oyane: the values of the particle nearest the track's point
 // at t = 0 (the lowest global id among equals), its point quantities averaged over the points whose
 // supports hold it as the frames average them (docs/outputs.md). A track more than a spacing from
 // every particle is refused by name. Rank 0 writes; a restart keeps the rows before it.

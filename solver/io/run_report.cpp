@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "material/damage.hpp"
 #include "process_memory.hpp"
 #include "rk/kinematics.hpp"
 
@@ -45,13 +46,14 @@ RunSummary write_run_report(const std::string& case_dir, const Scene& scene, con
       s.warnings.push_back("die '" + scene.dies[d].name + "' never touched the part in this run: check its CAD unit (dies[" +
                            std::to_string(d) + "].unit), its position and its motion's direction");
   // A crack predicted: a damage criterion at or above the scene's critical value, where it is largest
-  const std::pair<const char*, double> criteria[2] = {{"cockcroft_latham", scene.damage.cockcroft_latham_critical},
-                                                      {"brozzo", scene.damage.brozzo_critical}};
-  for (int k = 0; k < 2 && !st.damage.empty(); ++k) {
+  const std::pair<const char*, double> criteria[kDamageCriteria] = {
+      {"cockcroft_latham", scene.damage.cockcroft_latham_critical}, {"brozzo", scene.damage.brozzo_critical},
+      {"oyane", scene.damage.oyane_critical}};
+  for (std::size_t k = 0; k < kDamageCriteria && !st.damage.empty(); ++k) {
     double most = 0, at[4] = {0, 0, 0, 0};  // the largest value; the position(s) holding it, and their count
     std::size_t where = 0;
     for (std::size_t g = 0; g < md.m; ++g)
-      if (st.damage[2 * g + k] > most) most = st.damage[2 * g + k], where = g;
+      if (st.damage[kDamageCriteria * g + k] > most) most = st.damage[kDamageCriteria * g + k], where = g;
     double largest = most;
     comm.max(&largest, 1);
     if (most == largest && largest > 0) point_position(md, st, where, at), at[3] = 1;

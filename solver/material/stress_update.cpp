@@ -85,9 +85,11 @@ void accumulate_damage(const Model& md, State& st, std::size_t g0, std::size_t g
     const double* t = &st.tau[6 * p];
     const double shift = md.fbar ? st.total_J(p) * pc - (t[0] + t[1] + t[2]) / 3 : 0.0;
     const double s[6] = {t[0] + shift, t[1] + shift, t[2] + shift, t[3], t[4], t[5]};
-    const DamageIncrement d = damage_increment(s, dep);
-    st.damage[2 * p] += md.damage_cockcroft_latham ? d.cockcroft_latham : 0.0;
-    st.damage[2 * p + 1] += md.damage_brozzo ? d.brozzo : 0.0;
+    const DamageIncrement d = damage_increment(s, dep, md.oyane_a);
+    double* D = &st.damage[kDamageCriteria * p];
+    D[0] += md.damage_cockcroft_latham ? d.cockcroft_latham : 0.0;
+    D[1] += md.damage_brozzo ? d.brozzo : 0.0;
+    D[2] += md.damage_oyane ? d.oyane : 0.0;
   }
 }
 

@@ -38,7 +38,8 @@ def rank_files(case, frame, ranks=2):
         with h5py.File(case / "results" / f"rank_{r:04d}" / f"frame_{frame:05d}.h5", "r") as f:
             g = f[f"frames/{frame:05d}"]
             for key in g:
-                merged.setdefault(key, []).append(np.asarray(g[key]))
+                if not key.startswith("die_"):  # the particles' fields (the dies' are per triangle)
+                    merged.setdefault(key, []).append(np.asarray(g[key]))
             merged.setdefault("rank", []).append(np.full(len(g["global_id"]), r))
     order = np.argsort(np.concatenate(merged["global_id"]).ravel())
     return {k: np.concatenate(v)[order] for k, v in merged.items() if k not in ("time", "step")}

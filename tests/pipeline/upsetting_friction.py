@@ -19,7 +19,7 @@ case = tools.case("upsetting_friction")
 tools.prep(case, 1, scene=rkcase.ROOT / "geometry" / "upsetting" / "scene_friction.yaml",
            sets=["discretization.spacing=2e-3"])
 tools.solve(case, 1, sets=["time.end=3.1e-3", "time.mass_scaling_dt=3e-7", "time.output_interval=1e-3",
-                          "damage.cockcroft_latham.critical=0", "damage.brozzo.critical=0"])
+                          "damage.cockcroft_latham.critical=0", "damage.brozzo.critical=0", "damage.oyane.a=0.3"])
 tools.post(case)
 last = list(csv.DictReader(open(case / "history.csv")))[-1]
 press = float(last["die.work"])
@@ -55,7 +55,14 @@ for name, point in (("centre", (0, 0, 0)), ("equator", (0.01, 0, 0))):
                  f"{float(row[f'{name}.eq_plastic_strain']):.4f}, as the frame shows it, a row per history row")
 rkcase.check(abs(float(tracked[-1]["equator.x"]) - mid) < 0.05e-3 and abs(float(tracked[-1]["centre.x"])) < 1e-6,
              f"the equator moved out to the barrel's {1e3 * mid:.2f} mm, the centre stayed")
-rkcase.check(float(last["damage_cockcroft_latham_max"]) >= cl.max() and float(last["damage_brozzo_max"]) > 0,
+# Oyane's criterion (a = 0.3: no increment in uniaxial compression, sigma_m / sigma_eq = -1/3) grows
+# only where the barrel's hoop tension lifts the mean stress: on the free surface at mid-height too
+oy = frame.point_data["damage_oyane"].ravel()
+k = int(oy.argmax())
+rkcase.check(r[k] > r.max() - 0.3e-3 and x[k, 2] < 0.3e-3 and oy[k] > 0,
+             f"Oyane largest ({oy[k]:.4f}) on the free surface at mid-height: r {1e3 * r[k]:.2f} mm, z {1e3 * x[k, 2]:.2f} mm")
+rkcase.check(float(last["damage_cockcroft_latham_max"]) >= cl.max() and float(last["damage_brozzo_max"]) > 0
+             and float(last["damage_oyane_max"]) >= oy.max(),
              f"history: largest Cockcroft-Latham {last['damage_cockcroft_latham_max']}, Brozzo {last['damage_brozzo_max']}")
 out = tools.run([tools.bin / "rksolve", case, "--set", "output.track[1].point=[1, 0, 0]"], expect_ok=False)
 rkcase.check(out.returncode != 0 and "output.track 'equator': no particle within a spacing of its point" in out.stderr,

@@ -35,6 +35,23 @@ TEST(Damage, ClosedFormsOfTheCriteria) {
   EXPECT_EQ(rk::damage_increment(tension, 0).cockcroft_latham, 0.0);  // no plastic strain, no damage
 }
 
+// Oyane's normalized integrand max(sigma_m / sigma_eq + a, 0): tension 1/3 + a, pure shear a,
+// uniaxial compression a - 1/3 where positive, none under a die's confinement (sigma_m / sigma_eq =
+// -2 here) nor where the scene gives no constant (a = 0 in compression)
+TEST(Damage, OyaneClosedForms) {
+  const double tension[6] = {300e6, 0, 0, 0, 0, 0}, compression[6] = {0, 0, -300e6, 0, 0, 0};
+  const double shear[6] = {0, 0, 0, 0, 100e6, 0}, confined[6] = {-100e6, -100e6, -400e6, 0, 0, 0};
+  const double dep = 0.01, a = 0.45;
+  EXPECT_NEAR(rk::damage_increment(tension, dep, a).oyane, (1.0 / 3 + a) * dep, 1e-15);
+  EXPECT_NEAR(rk::damage_increment(shear, dep, a).oyane, a * dep, 1e-15);
+  EXPECT_NEAR(rk::damage_increment(compression, dep, a).oyane, (a - 1.0 / 3) * dep, 1e-15);
+  EXPECT_EQ(rk::damage_increment(compression, dep, 0.2).oyane, 0.0);
+  EXPECT_EQ(rk::damage_increment(confined, dep, a).oyane, 0.0);
+  EXPECT_EQ(rk::damage_increment(tension, 0, a).oyane, 0.0);
+  // the other criteria do not depend on it
+  EXPECT_EQ(rk::damage_increment(shear, dep, a).brozzo, rk::damage_increment(shear, dep).brozzo);
+}
+
 TEST(Damage, LargestPrincipalStressMatchesEigenAndIsRotationInvariant) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1, 1);
