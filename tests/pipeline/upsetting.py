@@ -34,9 +34,10 @@ ratio = float((last["damage_cockcroft_latham"].ravel() / np.maximum(last["eq_pla
 # (2.5 % of sigma_eq at 2 mm); with friction the barrel's equator reaches 0.13 (upsetting_friction.py)
 rkcase.check(ratio < 0.09, f"frictionless: Cockcroft-Latham at most {ratio:.3f} of the plastic strain")
 # Oyane with a = 0.3: sigma_m / sigma_eq = -1/3 in homogeneous compression, so no increment but for
-# the same scatter
+# the same scatter: measured 2026-12-02 0.009 of the plastic strain at most (with friction it grows at
+# the barrel's equator, upsetting_friction.py)
 oyane = float((last["damage_oyane"].ravel() / np.maximum(last["eq_plastic_strain"].ravel(), 0.1)).max())
-rkcase.check(oyane < 0.09, f"frictionless: Oyane (a = 0.3) at most {oyane:.3f} of the plastic strain")
+rkcase.check(oyane < 0.02, f"frictionless: Oyane (a = 0.3) at most {oyane:.3f} of the plastic strain")
 # Particle fields are positive-weight averages of the points' values (w_g max(N_I(X_g), 0)), so a
 # particle's von Mises stress stays at its points' flow stress, sigma_y = K (eps0 + ep)^n at the
 # particle's plastic strain (the law is concave: the points' average flow stress is at most the flow
