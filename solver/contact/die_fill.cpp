@@ -34,7 +34,8 @@ DieFill::DieFill(const Model& md, const Scene& scene, const DieContact& dies, co
         }
         modeled = modeled && side >= -1e-9 * std::abs(part);
       }
-      working_.push_back(toward > 0 && modeled ? 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) : 0.0);
+      area_.push_back(0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+      working_.push_back(toward > 0 && modeled);
     }
   }
   flags_.resize(working_.size());
@@ -49,7 +50,8 @@ const std::vector<double>& DieFill::filled(const DieContact& dies, const Comm& c
   comm.max(flags_.data(), int(flags_.size()));
   for (std::size_t k = 0; k < filled_.size(); ++k) {
     double touched = 0, all = 0;
-    for (std::size_t t = dies.triangle0(k); t < dies.triangle0(k + 1); ++t) touched += flags_[t] * working_[t], all += working_[t];
+    for (std::size_t t = dies.triangle0(k); t < dies.triangle0(k + 1); ++t)  // a touched triangle is worked
+      touched += flags_[t] * area_[t], all += working_[t] || flags_[t] > 0 ? area_[t] : 0.0;
     filled_[k] = all > 0 ? touched / all : 0.0;
   }
   return filled_;
@@ -65,7 +67,7 @@ DieFrame DieFill::frame(const DieContact& dies, double t, const Comm& comm) cons
   dies.surface_loads(scale, f.load);
   f.touched = dies.touched();  // 1: touched; else 0 on the working surface, -1 off it
   for (std::size_t t = 0; t < f.touched.size(); ++t)
-    if (f.touched[t] == 0 && !(working_[t] > 0)) f.touched[t] = -1;
+    if (f.touched[t] == 0 && !working_[t]) f.touched[t] = -1;
   return f;
 }
 

@@ -2,7 +2,8 @@
 // which triangles it has touched so far (DieContact keeps both per rank). A die's filled fraction is
 // the touched share of its working surface, the triangles that face the part (outward normal toward
 // the part's centre of mass at t = 0) reaching the modeled side of every symmetry plane (a corner there):
-// a closed die's cavity within the modeled sector, a flat die's face, not its back or sides.
+// a closed die's cavity within the modeled sector, a flat die's face, not its back or sides; a
+// triangle the material touched counts as working surface whatever its side.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -33,7 +34,8 @@ class DieFill {
   DieFrame frame(const DieContact& dies, double t, const Comm& comm) const;
 
  private:
-  std::vector<double> working_;  // per triangle: its area where it faces the part, else 0
+  std::vector<double> area_;     // per triangle
+  std::vector<bool> working_;    // per triangle: it faces the part (every touched triangle counts as well)
   std::vector<double> flags_, filled_;  // reduction buffer (per triangle), the fractions (per die)
   int headroom_ = 0;  // bits for every contact term of every rank
 };
