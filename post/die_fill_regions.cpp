@@ -9,14 +9,9 @@ namespace rk {
 namespace {
 
 double triangle_area(const DieSurface& s, std::size_t t, double centre[3]) {
-  const double* a = &s.vertices[3 * std::size_t(s.triangles[3 * t])];
-  const double* b = &s.vertices[3 * std::size_t(s.triangles[3 * t + 1])];
-  const double* c = &s.vertices[3 * std::size_t(s.triangles[3 * t + 2])];
-  const double n[3] = {(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
-                       (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
-                       (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])};
-  for (int i = 0; i < 3; ++i) centre[i] = (a[i] + b[i] + c[i]) / 3;
-  return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  double n[3];
+  s.centre(t, centre);
+  return s.area_normal(t, n);
 }
 
 std::size_t root(std::vector<std::size_t>& parent, std::size_t i) {
@@ -27,7 +22,7 @@ std::size_t root(std::vector<std::size_t>& parent, std::size_t i) {
 }  // namespace
 
 std::vector<UnfilledRegion> unfilled_regions(const DieSurface& die, const std::vector<double>& touched, const double shift[3]) {
-  const std::size_t n = die.triangles.size() / 3, vertices = die.vertices.size() / 3;
+  const std::size_t n = die.triangle_count(), vertices = die.vertices.size() / 3;
   std::vector<std::size_t> parent(n), first(vertices, n);  // first: a vertex's first untouched triangle
   std::iota(parent.begin(), parent.end(), 0);
   for (std::size_t t = 0; t < n; ++t) {
@@ -56,7 +51,7 @@ std::vector<UnfilledRegion> unfilled_regions(const DieSurface& die, const std::v
     for (int i = 0; i < 3; ++i) g.centre[i] += a * (c[i] + shift[i]);
     for (int k = 0; k < 3; ++k)
       for (int i = 0; i < 3; ++i) {
-        const double x = die.vertices[3 * std::size_t(die.triangles[3 * t + std::size_t(k)]) + std::size_t(i)] + shift[i];
+        const double x = die.corner(t, k)[i] + shift[i];
         g.lo[i] = std::min(g.lo[i], x), g.hi[i] = std::max(g.hi[i], x);
       }
   }
@@ -69,7 +64,7 @@ std::vector<UnfilledRegion> unfilled_regions(const DieSurface& die, const std::v
 std::string describe_fill(const std::string& name, const DieSurface& die, const std::vector<double>& touched,
                           const double shift[3], std::size_t most) {
   double working = 0, filled = 0, c[3];
-  for (std::size_t t = 0; t < die.triangles.size() / 3; ++t) {
+  for (std::size_t t = 0; t < die.triangle_count(); ++t) {
     const double a = triangle_area(die, t, c);
     if (touched[t] >= 0) working += a;
     if (touched[t] > 0) filled += a;

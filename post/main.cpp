@@ -95,17 +95,12 @@ Frame read_frame(const std::string& case_dir, int ranks, int f, const std::vecto
 // over its area, Pa) and whether the material has touched it so far (the die fill); none where the
 // frame holds no die datasets.
 std::vector<rk::VtuArray> die_fields(const rk::DieSurface& die, const Frame& fr, std::size_t first) {
-  const std::size_t n = die.triangles.size() / 3;
+  const std::size_t n = die.triangle_count();
   if (fr.die_touched.size() < first + n) return {};
   rk::VtuArray pressure{"contact_pressure", 1, {}, {}}, shear{"contact_shear", 1, {}, {}}, touched{"touched", 1, {}, {}};
   for (std::size_t t = 0; t < n; ++t) {
-    const double* a = &die.vertices[3 * std::size_t(die.triangles[3 * t])];
-    const double* b = &die.vertices[3 * std::size_t(die.triangles[3 * t + 1])];
-    const double* c = &die.vertices[3 * std::size_t(die.triangles[3 * t + 2])];
-    const double nx = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
-    const double ny = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
-    const double nz = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    const double area = 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
+    double normal[3];
+    const double area = die.area_normal(t, normal);
     const double* f = &fr.die_load[4 * (first + t)];
     pressure.f64.push_back(area > 0 ? f[0] / area : 0.0);
     shear.f64.push_back(area > 0 ? std::sqrt(f[1] * f[1] + f[2] * f[2] + f[3] * f[3]) / area : 0.0);
@@ -333,13 +328,13 @@ int run(int argc, char** argv) {
       rk::write_vtu(case_dir + "/vtk/" + file, x, {}, rk::VtuCells::triangles(dies[k].triangles),
                     die_fields(dies[k], fr, first_triangle), !uncompressed);
       if (k == 0) fill.clear();
-      if (fr.die_touched.size() >= first_triangle + dies[k].triangles.size() / 3) {
+      if (fr.die_touched.size() >= first_triangle + dies[k].triangle_count()) {
         const std::vector<double> touched(fr.die_touched.begin() + std::ptrdiff_t(first_triangle),
-                                          fr.die_touched.begin() + std::ptrdiff_t(first_triangle + dies[k].triangles.size() / 3));
+                                          fr.die_touched.begin() + std::ptrdiff_t(first_triangle + dies[k].triangle_count()));
         const double shift[3] = {stroke * die.motion.direction[0], stroke * die.motion.direction[1], stroke * die.motion.direction[2]};
         fill.push_back(rk::describe_fill(die.name, dies[k], touched, shift));
       }
-      first_triangle += dies[k].triangles.size() / 3;
+      first_triangle += dies[k].triangle_count();
       index.push_back({fr.time, int(k + 1), file, die.name});
     }
     for (std::size_t k = 0; k < flow.size(); ++k) {  // the flow lines through the particles' current positions

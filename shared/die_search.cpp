@@ -63,11 +63,9 @@ DieSearch::DieSearch(const DieSurface& s, double margin) : s_(s) {
       lo_[d] = std::min(lo_[d], box_[6 * t + d] - margin);
       hi[d] = std::max(hi[d], box_[6 * t + 3 + d] + margin);
     }
-    double e1[3], e2[3], n[3];
-    for (int i = 0; i < 3; ++i) e1[i] = v[1][i] - v[0][i], e2[i] = v[2][i] - v[0][i];
-    n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    const double len = std::sqrt(dot3(n, n));
-    for (int i = 0; i < 3; ++i) normal_.push_back(len > 0 ? n[i] / len : 0.0);
+    double e1[3], n[3];
+    const double len = 2 * s.area_normal(t, n);  // |n| (the doubling is exact)
+    for (int i = 0; i < 3; ++i) normal_.push_back(len > 0 ? n[i] / len : 0.0), e1[i] = v[1][i] - v[0][i];
     edges += std::sqrt(dot3(e1, e1));
   }
   if (nt == 0) {

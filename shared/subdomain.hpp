@@ -14,6 +14,7 @@
 //   dies/NNNN/{vertices[v,3], triangles[t,3]}  (attr die_count)      rigid die surfaces, outward
 //                                                                    normals (every rank holds all)
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -27,6 +28,20 @@ enum ParticleFlag : std::uint8_t { kSurface = 1 };
 struct DieSurface {
   std::vector<double> vertices;        // 3 per vertex, m, reference (t = 0) position
   std::vector<std::int32_t> triangles; // 3 vertex indices each, counter-clockwise seen from outside
+
+  std::size_t triangle_count() const { return triangles.size() / 3; }
+  const double* corner(std::size_t t, int k) const { return &vertices[3 * std::size_t(triangles[3 * t + std::size_t(k)])]; }
+  // Triangle t's (b - a) x (c - a): the outward normal times twice its area; returns the area
+  double area_normal(std::size_t t, double n[3]) const {
+    const double *a = corner(t, 0), *b = corner(t, 1), *c = corner(t, 2);
+    double e1[3], e2[3];
+    for (int i = 0; i < 3; ++i) e1[i] = b[i] - a[i], e2[i] = c[i] - a[i];
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  }
+  void centre(std::size_t t, double c[3]) const {
+    for (int i = 0; i < 3; ++i) c[i] = (corner(t, 0)[i] + corner(t, 1)[i] + corner(t, 2)[i]) / 3;
+  }
 };
 
 struct Subdomain {

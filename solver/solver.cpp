@@ -107,6 +107,7 @@ class Simulation {
   PhaseTimer timer_;
   PressureBound pressure_bound_;
   int headroom_ = 0;  // of the fixed-point force sums
+  int die_headroom_ = 0;  // of the dies' own sums (their loads, a ram's reaction)
   std::vector<double> v_old_;  // v^{n-1/2} during the step (vbar at an output)
   std::int64_t first_step_ = 0;
   // what one step hands the next phases
@@ -423,7 +424,12 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   ebc_ = collectively(comm, [&] { return std::make_unique<EssentialBcs>(md_, scene_, comm); });
   ebc_->apply(md_, st_, 0.0, 0.0, 0.0, st_.v);  // initial velocities that meet the conditions' rates
   dies_ = std::make_unique<DieContact>(md_, scene_, md_.dies);
-  if (!md_.dies.empty()) fill_ = std::make_unique<DieFill>(md_, scene_, *dies_, comm);
+  if (!md_.dies.empty()) {  // the headroom of the dies' fixed-point sums: every rank's contact terms
+    double terms = double(dies_->terms());
+    comm.sum(&terms, 1);
+    die_headroom_ = headroom_bits(std::int64_t(terms) + 1);
+    fill_ = std::make_unique<DieFill>(md_, scene_, die_headroom_, comm);
+  }
   clock_.dt_stable = dt0;  // the last unclipped global stable step: the stick force's step
   clock_.dt_penalty = dt0;  // and the smallest so far: the penalty stiffness
   clock_.kinetic0 = compute_energies(md_, st_, st_.v, comm).kinetic;
@@ -493,7 +499,7 @@ void Simulation::start_presses(double h_min) {
   std::size_t rams = 0;
   for (const Die& d : scene_.dies) rams += d.motion.driven() ? 1 : 0;
   if (rams == 0) return;
-  presses_ = std::make_unique<Presses>(scene_, h_min, double(dies_->terms()), comm_);
+  presses_ = std::make_unique<Presses>(scene_, h_min, die_headroom_);
   double part_mass = 0;
   for (std::size_t I = 0; I < md_.n; ++I)
     if (md_.owned[I]) part_mass += md_.mass[I];

@@ -93,7 +93,7 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
   die_moved_.assign(dies_.size(), 0.0);
   driven_.assign(2 * dies_.size(), 0.0);
   triangle0_.assign(1, 0);
-  for (const auto& sf : surfaces_) triangle0_.push_back(triangle0_.back() + sf.triangles.size() / 3);
+  for (const auto& sf : surfaces_) triangle0_.push_back(triangle0_.back() + sf.triangle_count());
   touched_.assign(triangle0_.back(), 0);
   for (const auto& sf : surfaces_) {
     double b[6] = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};

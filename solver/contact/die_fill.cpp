@@ -5,7 +5,7 @@
 
 namespace rk {
 
-DieFill::DieFill(const Model& md, const Scene& scene, const DieContact& dies, const Comm& comm) {
+DieFill::DieFill(const Model& md, const Scene& scene, int headroom, const Comm& comm) : headroom_(headroom) {
   double c[4] = {0, 0, 0, 0};  // the part's centre of mass at t = 0
   for (std::size_t I = 0; I < md.n; ++I)
     if (md.owned[I])
@@ -14,35 +14,28 @@ DieFill::DieFill(const Model& md, const Scene& scene, const DieContact& dies, co
   comm.sum(c, 4);
   for (std::size_t k = 0; k < md.dies.size(); ++k) {
     const DieSurface& s = md.dies[k];
-    for (std::size_t t = 0; t < s.triangles.size() / 3; ++t) {
-      const double* a = &s.vertices[3 * std::size_t(s.triangles[3 * t])];
-      const double* b = &s.vertices[3 * std::size_t(s.triangles[3 * t + 1])];
-      const double* d = &s.vertices[3 * std::size_t(s.triangles[3 * t + 2])];
-      double n[3], toward = 0;  // (b - a) x (d - a): twice the area along the outward normal
-      n[0] = (b[1] - a[1]) * (d[2] - a[2]) - (b[2] - a[2]) * (d[1] - a[1]);
-      n[1] = (b[2] - a[2]) * (d[0] - a[0]) - (b[0] - a[0]) * (d[2] - a[2]);
-      n[2] = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
-      for (int i = 0; i < 3; ++i) toward += n[i] * (c[i] / c[3] - (a[i] + b[i] + d[i]) / 3);
+    for (std::size_t t = 0; t < s.triangle_count(); ++t) {
+      double n[3], centre[3], toward = 0;
+      area_.push_back(s.area_normal(t, n));
+      s.centre(t, centre);
+      for (int i = 0; i < 3; ++i) toward += n[i] * (c[i] / c[3] - centre[i]);
       bool modeled = true;  // a corner on the part's side of every symmetry plane (within its round-off)
       for (const SymmetryPlane& p : scene.symmetry_planes) {
         double part = 0, side = -1e300;
         for (int i = 0; i < 3; ++i) part += (c[i] / c[3] - p.point[i]) * p.normal[i];
-        for (const double* v : {a, b, d}) {
+        for (int q = 0; q < 3; ++q) {
+          const double* v = s.corner(t, q);
           double here = 0;
           for (int i = 0; i < 3; ++i) here += (v[i] - p.point[i]) * p.normal[i];
           side = std::max(side, here * (part < 0 ? -1.0 : 1.0));
         }
         modeled = modeled && side >= -1e-9 * std::abs(part);
       }
-      area_.push_back(0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
       working_.push_back(toward > 0 && modeled);
     }
   }
   flags_.resize(working_.size());
   filled_.resize(md.dies.size());
-  double terms = double(dies.terms());
-  comm.sum(&terms, 1);
-  headroom_ = headroom_bits(std::int64_t(terms) + 1);
 }
 
 const std::vector<double>& DieFill::filled(const DieContact& dies, const Comm& comm) {

@@ -27,7 +27,8 @@ struct DieFrame {
 
 class DieFill {
  public:
-  DieFill(const Model& md, const Scene& scene, const DieContact& dies, const Comm& comm);
+  // headroom: the bits for every contact term of every rank (the loads' fixed-point sums)
+  DieFill(const Model& md, const Scene& scene, int headroom, const Comm& comm);
   // Collective: each die's filled fraction (its touched working area over its working area)
   const std::vector<double>& filled(const DieContact& dies, const Comm& comm);
   // Collective: the frame's die datasets at time t

@@ -6,16 +6,13 @@
 
 namespace rk {
 
-Presses::Presses(const Scene& scene, double h_min, double slaves, const Comm& comm) : h_min_(h_min) {
+Presses::Presses(const Scene& scene, double h_min, int headroom) : h_min_(h_min), headroom_(headroom) {
   for (std::size_t k = 0; k < scene.dies.size(); ++k) {
     const Die& d = scene.dies[k];
     if (!d.motion.driven()) continue;
     rams_.push_back({k, d.motion.ram, d.motion.blows() ? d.motion.ram.blow_speed() : d.motion.speed, d.force_factor});
   }
   sums_.assign(rams_.size(), 0);
-  if (empty()) return;
-  comm.sum(&slaves, 1);  // every contact term of every rank: the fixed-point headroom, partition-free
-  headroom_ = headroom_bits(std::int64_t(slaves) + 1);
 }
 
 void Presses::start(State& st) const {
@@ -123,18 +120,6 @@ bool Presses::stalled(const State& st, std::size_t r) const {
   const State::Ram& s = st.rams[r];
   const DieMotion::Ram& p = rams_[r].press;
   return p.blows == 0 && s.stopped > 0 && !(p.stroke > 0 && s.stroke >= p.stroke);
-}
-
-const State::Ram* Presses::ram(const State& st, std::size_t die) const {
-  for (std::size_t r = 0; r < rams_.size(); ++r)
-    if (rams_[r].die == die) return &st.rams[r];
-  return nullptr;
-}
-
-double Presses::speed(std::size_t die) const {
-  for (const Ram& ram : rams_)
-    if (ram.die == die) return ram.vbar;
-  return 0;
 }
 
 }  // namespace rk

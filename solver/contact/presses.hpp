@@ -26,8 +26,8 @@ namespace rk {
 
 class Presses {
  public:
-  // `slaves`: this rank's contact terms (particles, points and boundary faces); h_min the smallest spacing
-  Presses(const Scene& scene, double h_min, double slaves, const Comm& comm);
+  // h_min: the smallest spacing; headroom: the bits for every contact term of every rank
+  Presses(const Scene& scene, double h_min, int headroom);
   bool empty() const { return rams_.empty(); }
   void start(State& st) const;  // each ram at rest stroke 0, at v0 or its nominal speed
   // Tells the contact where the driven dies are at t^n and how fast they move: v^{n-1/2} before
@@ -43,10 +43,6 @@ class Presses {
   // A line per ram for the log and report.md: how it ended (blows, energy, stroke; a stalled press).
   std::vector<std::string> outcome(const State& st, const std::vector<Die>& dies) const;
   bool stalled(const State& st, std::size_t r) const;  // ram r, a hydraulic press, stopped short of its stroke
-  // For the history: die k's ram (nullptr when the die follows a time law) and its speed over the
-  // last step (vbar, m/s)
-  const State::Ram* ram(const State& st, std::size_t die) const;
-  double speed(std::size_t die) const;
 
  private:
   struct Ram {
