@@ -15,6 +15,10 @@ struct PhaseTime {  // wall time of one phase of the step over the run, min and 
   double min_s = 0, max_s = 0;
 };
 
+// A mass-scaled (quasi-static) run whose kinetic energy passes this share of the internal energy
+// gets a warning: inertia, not the material, is carrying part of the load.
+inline constexpr double kMaxQuasiStaticKineticRatio = 0.05;
+
 struct RunSummary {
   std::int64_t format = kRunSummaryFormat;
   std::int64_t steps = 0;

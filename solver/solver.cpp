@@ -331,6 +331,7 @@ void Simulation::history(double dt, bool last) {
   const bool started = st_.step >= 100 && (clock_.kinetic0 > 0 || st_.t > 0.1 * t_end);
   if (started || last) clock_.max_error = std::max(clock_.max_error, row.energy_error);
   if (st_.t > 0.05 * t_end) clock_.max_ke_ratio = std::max(clock_.max_ke_ratio, row.kinetic_internal);
+  if (st_.t > 0.5 * t_end) clock_.max_ke_ratio_late = std::max(clock_.max_ke_ratio_late, row.kinetic_internal);
   clock_.next_history += t_end / 500;
   health_->after_history(md_, st_, *dies_, row.energy_error, started, comm_, last_frame_);
   timer_.stop(kHistory);

@@ -69,6 +69,19 @@ RunSummary write_run_report(const std::string& case_dir, const Scene& scene, con
       s.warnings.push_back(text);
     }
   }
+  // Mass scaling that changed the answer: a quasi-static forming run keeps its kinetic energy a
+  // small part of the internal energy (under 5 %, the usual bound for explicit forming codes) once
+  // the start-up transient has passed (judged over the run's second half: early on the internal
+  // energy is small and the ratio large in any run); more means inertia carries part of the load.
+  if (md.mass_scaling > 1 && clock.max_ke_ratio_late > kMaxQuasiStaticKineticRatio) {
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "mass scaling (density x %.3g to reach time.mass_scaling_dt = %.3g s) let the kinetic energy reach "
+                  "%.3g %% of the internal energy in the second half of the run (a quasi-static run stays under "
+                  "%.3g %%): inertia is changing the forces; lower time.mass_scaling_dt or slow the dies",
+                  md.mass_scaling, scene.time.mass_scaling_dt, 100 * clock.max_ke_ratio_late, 100 * kMaxQuasiStaticKineticRatio);
+    s.warnings.push_back(text);
+  }
   for (const auto& w : counts.warnings) s.warnings.push_back(w);
   s.presses = counts.presses;
   if (comm.rank() != 0) return s;
