@@ -1,5 +1,5 @@
 // rksolve: explicit RKPM on N ranks, each reading only its own subdomain file.
-//   mpirun -np N rksolve CASE [--set key.path=value ...] [--quiet] [--restart]
+//   mpirun -np N rksolve CASE [--set key.path=value ...] [--quiet] [--progress SECONDS] [--restart]
 #include <mpi.h>
 
 #include <cstdio>
@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   app.add_option("case", options.case_dir, "case directory written by rkprep")->required();
   app.add_option("--set", sets, "override a solver-side scene key: key.path=value (repeatable)");
   app.add_flag("--quiet", options.quiet, "print nothing but errors");
+  app.add_option("--progress", options.progress_s, "seconds between progress lines (default 2 on a terminal, 10 in a log)")
+      ->check(CLI::PositiveNumber);
   app.add_flag("--restart", options.restart, "continue from the newest checkpoint in CASE/checkpoint");
   try {
     app.parse(argc, argv);

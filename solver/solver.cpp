@@ -148,7 +148,7 @@ void Simulation::run() {
     if (output_due(last)) output();             // a frame at t^n with vbar
     if (last) break;
     displacement_update(dt);                    // d^{n+1} = d^n + dt v^{n+1/2}, t^{n+1}
-    progress_->step(st_, dt, clock_.last_error, history_->row());
+    progress_->step(st_, dt, clock_.last_error, history_->row(), comm_.wtime());
   }
 }
 
@@ -482,7 +482,8 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   last_checkpoint_wall_ = comm.wtime();
   setup_s_ = comm.wtime() - wall0_;
   const std::string first_die = scene_.dies.empty() ? "" : scene_.dies[0].name;
-  progress_ = std::make_unique<Progress>(opt.quiet, comm, scene_.time.end, history_->columns(), first_die, st_);
+  progress_ = std::make_unique<Progress>(!opt.quiet && comm.rank() == 0, comm.size(), comm.wtime(), opt.progress_s,
+                                         scene_.time.end, history_->columns(), first_die, st_);
   progress_->banner(opt.restart, setup_s_, md_.mass_scaling);
   if (comm.rank() == 0)  // suspicious temperatures before the run, not only in its report
     for (const std::string& w : temperature_warnings(scene_)) std::fprintf(stderr, "rksolve: warning: %s\n", w.c_str());

@@ -12,6 +12,7 @@ struct SolveOptions {
   std::string case_dir;
   std::vector<Override> overrides;
   bool quiet = false;
+  double progress_s = 0;  // seconds between progress lines; 0: 2 s on a terminal, 10 s otherwise
   bool restart = false;  // continue from CASE/checkpoint (time.end may be extended with --set)
 };
 

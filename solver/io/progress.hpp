@@ -1,31 +1,36 @@
 // What rksolve prints while it runs (rank 0, not with --quiet): a banner, a progress line every 2 s
-// on a terminal (one updating line) or every 10 s into a pipe or a log, and a closing line.
+// on a terminal (one updating line) or every 10 s into a pipe or a log (--progress SECONDS sets
+// the interval), and a closing line.
 #pragma once
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <vector>
 
-#include "parallel/comm.hpp"
 #include "state.hpp"
 
 namespace rk {
 
 class Progress {
  public:
-  // columns: the history's; the line shows the first die's stroke and force from the last row.
-  Progress(bool quiet, const Comm& comm, double t_end, const std::vector<std::string>& columns,
-           const std::string& first_die, const State& st);
+  // show: rank 0 and not --quiet; now: the wall clock (s); interval: seconds between lines (0: 2 s
+  // on a terminal, 10 s otherwise); columns: the history's, the line shows the first die's stroke
+  // and force from the last row.
+  Progress(bool show, int ranks, double now, double interval, double t_end, const std::vector<std::string>& columns,
+           const std::string& first_die, const State& st, std::FILE* out = stdout);
 
   void banner(bool restart, double setup_s, double mass_scaling) const;
-  // After a step: prints when the interval has passed.
-  void step(const State& st, double dt, double energy_error, const std::vector<double>& history_row);
+  // After a step, at wall time `now`: prints when the interval has passed.
+  void step(const State& st, double dt, double energy_error, const std::vector<double>& history_row, double now);
   void done(std::int64_t steps, double wall_s, double ns_per_point_update, double energy_error) const;
 
  private:
-  bool show_;            // rank 0 and not quiet
-  const Comm& comm_;
+  bool show_;
+  int ranks_;
+  std::FILE* out_;
   double t_end_;
   bool terminal_;        // one updating line (a terminal, no launcher), else plain lines
+  double interval_;
   bool line_open_ = false;  // an updating line is on the terminal: end it before other output
   std::string press_name_;   // the first die's stroke column, empty without dies
   std::ptrdiff_t press_column_ = -1;

@@ -2,7 +2,9 @@
 CAD file, a die that is not a closed solid, a workpiece that starts inside a die, a missing workpiece
 CAD, an unreadable one, and a workpiece given in the wrong unit (millimetres read as metres, refused
 before meshing)."""
+import csv
 import json
+import re
 
 import rkcase
 
@@ -59,6 +61,15 @@ tools.prep(toward, 1, scene=src / "scene.yaml", sets=["discretization.spacing=2.
 p = tools.solve(toward, 1, sets=["time.end=0.2e-3", "time.output_interval=0.1e-3"])
 rkcase.check("warning" not in p.stderr and __import__("json").loads((toward / "solve.json").read_text())["warnings"] == [],
              "the die pressing the part: no warning")
+# The progress line (--progress SECONDS, here 0.02 s) shows the first die's stroke and force: each is a
+# history row's (the last one written at or before the line's time), to the 4 digits printed.
+p = tools.run(["mpirun", "-np", 1, tools.bin / "rksolve", toward, "--progress", "0.02", "--set", "time.end=0.2e-3",
+               "--set", "time.output_interval=0.1e-3"])
+rows = list(csv.DictReader(open(toward / "history.csv")))
+lines = re.findall(r"t = (\S+) s .* die\.stroke (\S+) mm, (\S+) kN  energy error \S+  ETA \d+ s", p.stdout)
+matched = [any(float(r["time"]) <= float(t) and f"{1e3 * float(r['die.stroke']):.4g}" == mm
+               and f"{1e-3 * float(r['die.force']):.4g}" == kn for r in rows) for t, mm, kn in lines]
+rkcase.check(len(lines) >= 2 and all(matched), f"the progress line's stroke and force are the history's: {lines}")
 # Suspicious but legal: mass scaling so strong that inertia carries the load. The same 0.2 ms at
 # time.mass_scaling_dt = 2e-6 s (594x the density, 10x the scene's) keeps the kinetic energy at
 # 22.9 % of the internal energy over the run's second half (0.2 % at the scene's 2e-7 s, measured
