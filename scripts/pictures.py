@@ -7,7 +7,8 @@ computes them (as Figs. 8c, 13 and 18 of Wang et al. 2007 show the partition).
   (or xvfb-run -a pvbatch ...; plain pvbatch where a display exists)
 
 Writes CASE/plots/part_ep_FFFFF.png, part_temperature_FFFFF.png (with a temperature) and
-part_rank_FFFFF.png."""
+part_rank_FFFFF.png, and CASE/plots/pictures.json: each picture's field, time and colour scale as
+ParaView drew it (a continuous field's [low, high], or the rank's categories)."""
 import argparse
 import json
 import xml.etree.ElementTree as ET
@@ -41,7 +42,8 @@ def value_range(part_file, name):
 
 def render(part_file, die_files, out, colour, title, size, top=None, ranks=0, low=0.0):
     """The part coloured by `colour`: a point field on [low, top] (the same scale for every frame), or
-    the cells' rank as categories (ranks > 0: one colour and legend entry per rank)."""
+    the cells' rank as categories (ranks > 0: one colour and legend entry per rank). Returns the
+    colour scale as drawn: {"scale": [low, high]} or {"categories": [legend entries]}."""
     view = CreateView("RenderView")
     view.ViewSize = size
     view.Background = [1, 1, 1]
@@ -82,7 +84,10 @@ def render(part_file, die_files, out, colour, title, size, top=None, ranks=0, lo
     ResetCamera(view)
     Render(view)
     SaveScreenshot(str(out), view, ImageResolution=size)
+    drawn = ({"categories": list(lut.Annotations[1::2])} if lut.InterpretValuesAsCategories
+             else {"scale": [lut.RGBPoints[0], lut.RGBPoints[-4]]})  # RGBPoints: x, r, g, b per control point
     Delete(view)
+    return drawn
 
 
 def main():
@@ -102,19 +107,24 @@ def main():
     hot = None if None in temperatures else (min(r[0] for r in temperatures), max(r[1] for r in temperatures))
     out = a.case / "plots"
     out.mkdir(exist_ok=True)
+    made = []
     for k in chosen:
         t = times[k]
         part = [f for tt, p, f in items if tt == t and p == 0][0]
         dies = [f for tt, p, f in items if tt == t and p > 0]
         stem = part.stem.replace("frame_", "")
-        render(part, dies, out / f"part_ep_{stem}.png", ("POINTS", "eq_plastic_strain"),
-               f"eq. plastic strain, {time_text(t, times[-1])}", size, top=top)
+        drawn = render(part, dies, out / f"part_ep_{stem}.png", ("POINTS", "eq_plastic_strain"),
+                       f"eq. plastic strain, {time_text(t, times[-1])}", size, top=top)
+        made.append({"file": f"part_ep_{stem}.png", "field": "eq_plastic_strain", "time": t, **drawn})
         if hot:  # one scale for the frames, from the coolest to the hottest point
-            render(part, dies, out / f"part_temperature_{stem}.png", ("POINTS", "temperature"),
-                   f"temperature (K), {time_text(t, times[-1])}", size, top=hot[1], low=hot[0])
-        render(part, [], out / f"part_rank_{stem}.png", ("CELLS", "rank"), "rank", size, ranks=ranks)
+            drawn = render(part, dies, out / f"part_temperature_{stem}.png", ("POINTS", "temperature"),
+                           f"temperature (K), {time_text(t, times[-1])}", size, top=hot[1], low=hot[0])
+            made.append({"file": f"part_temperature_{stem}.png", "field": "temperature", "time": t, **drawn})
+        drawn = render(part, [], out / f"part_rank_{stem}.png", ("CELLS", "rank"), "rank", size, ranks=ranks)
+        made.append({"file": f"part_rank_{stem}.png", "field": "rank", "time": t, **drawn})
         print(f"pictures: {out}/part_ep_{stem}.png, {'part_temperature_' + stem + '.png, ' if hot else ''}"
               f"part_rank_{stem}.png (t = {t:g} s)")
+    (out / "pictures.json").write_text(json.dumps({"pictures": made}, indent=1) + "\n")
 
 
 main()

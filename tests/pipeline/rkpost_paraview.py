@@ -11,6 +11,7 @@ import subprocess
 
 import h5py
 import matplotlib.image as mpimg
+import meshio
 import numpy as np
 
 import rkcase
@@ -107,6 +108,17 @@ for name in ("part_ep_00000", "part_ep_00002", "part_rank_00002"):
     colours = len(np.unique(img.reshape(-1, img.shape[-1]), axis=0))
     rkcase.check(img.shape[:2] == (480, 640) and png.stat().st_size > 10_000 and colours > 50,
                  f"{png.name}: {img.shape[1]}x{img.shape[0]}, {png.stat().st_size} bytes, {colours} colours")
+# the colour scales as ParaView drew them: the frame at rest on the run's scale (0 to the largest
+# plastic strain of the frames shown, at least 1e-3 so that an elastic run as this one reads 0 to
+# 0.001, not 0 to 1e-38), the ranks as categories with a legend entry each
+drawn = {d["file"]: d for d in json.loads((case / "plots" / "pictures.json").read_text())["pictures"]}
+last_ep = float(meshio.read(case / "vtk" / "frame_00002.vtu").point_data["eq_plastic_strain"].max())
+rkcase.check(drawn["part_ep_00000.png"]["scale"] == drawn["part_ep_00002.png"]["scale"]
+             and drawn["part_ep_00000.png"]["scale"] == [0, max(last_ep, 1e-3)],
+             f"the frame at rest coloured on the run's scale: {drawn['part_ep_00000.png']}, largest strain {last_ep}")
+rkcase.check(all(drawn[f"part_rank_{f}.png"].get("categories") == [f"rank {r}" for r in range(prep["ranks"])]
+                 for f in ("00000", "00002")) and prep["ranks"] == 2,
+             f"the ranks drawn as categories: {drawn['part_rank_00002.png']}")
 
 # the report: rkpost again, now that the pictures exist
 tools.post(case)
