@@ -15,6 +15,7 @@
 #include "flow_lines.hpp"
 #include "h5file.hpp"
 #include "pictures.hpp"
+#include "chain.hpp"
 #include "report.hpp"
 #include "result_frame.hpp"
 #include "scene.hpp"
@@ -368,6 +369,8 @@ int run(int argc, char** argv) {
   if (!quiet)
     std::printf("rkpost: %lld frames of %d ranks merged into %s/vtk/case.pvd (%d skipped, %zu dies)\n",
                 static_cast<long long>(chosen.size() - skipped), ranks, case_dir.c_str(), skipped, dies.size());
+  if (const int stages = rk::write_chain_pvd(case_dir, index); stages > 0 && !quiet)
+    std::printf("rkpost: the chain of %d stages, one sequence: %s/vtk/chain.pvd\n", stages, case_dir.c_str());
   return 0;
 }
 

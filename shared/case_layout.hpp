@@ -1,5 +1,5 @@
 // A case folder's entries and which program writes them: rkprep (the subdomains, prep.json, the
-// resolved scene), rksolve (results/, checkpoint/, history.csv, solve.json), rkpost (vtk/, plots/,
+// resolved scene), rksolve (results/, checkpoint/, history.csv, solve.json, stage.json), rkpost (vtk/, plots/,
 // report.md). A new rkprep output replaces all of them, so that no result of another case survives
 // beside the new subdomains.
 #pragma once
@@ -9,9 +9,9 @@
 
 namespace rk {
 
-inline constexpr std::array<const char*, 10> kCaseEntries = {
+inline constexpr std::array<const char*, 11> kCaseEntries = {
     "sub", "prep.json", "scene.resolved.yaml",                    // rkprep
-    "results", "checkpoint", "history.csv", "solve.json",         // rksolve
+    "results", "checkpoint", "history.csv", "solve.json", "stage.json",  // rksolve
     "vtk", "plots", "report.md"};                                 // rkpost
 
 // The entries of kCaseEntries present in `dir`, comma-separated ("" when none, or no such folder).

@@ -58,10 +58,13 @@ struct DieMotion {
   bool blows() const { return ram.blows > 0; }
   bool hydraulic() const { return ram.force_limit > 0; }
   bool driven() const { return blows() || hydraulic(); }  // by the part's reaction: stroke(t) and rate(t) do not apply
+  // When the motion begins on the run's clock (s): 0, or for a die new to a stage of a chain the
+  // stage's start (solver/stage.hpp). The times of `curve` and `crank` count from it.
+  double start = 0;
   double stroke(double t) const;                  // m along `direction` (a motion not driven())
   double rate(double t) const;                    // d stroke / dt
   double fastest() const;                         // the largest |rate| over the motion (m/s)
-  // the farthest stroke over [0, t_end] (m); infinite for a blow, which goes as far as its energy takes it
+  // the farthest stroke over [start, t_end] (m); infinite for a blow, which goes as far as its energy takes it
   double reach(double t_end) const;
 };
 

@@ -1,5 +1,5 @@
 // rksolve: explicit RKPM on N ranks, each reading only its own subdomain file.
-//   mpirun -np N rksolve CASE [--set key.path=value ...] [--quiet] [--progress SECONDS] [--restart]
+//   mpirun -np N rksolve CASE [--set key.path=value ...] [--quiet] [--progress SECONDS] [--restart | --from PREVIOUS]
 #include <mpi.h>
 
 #include <cstdio>
@@ -18,7 +18,11 @@ int main(int argc, char** argv) {
   app.add_flag("--quiet", options.quiet, "print nothing but errors");
   app.add_option("--progress", options.progress_s, "seconds between progress lines (default 2 on a terminal, 10 in a log)")
       ->check(CLI::PositiveNumber);
-  app.add_flag("--restart", options.restart, "continue from the newest checkpoint in CASE/checkpoint");
+  auto* restart = app.add_flag("--restart", options.restart, "continue from the newest checkpoint in CASE/checkpoint");
+  app.add_option("--from", options.from,
+                 "a stage of a chain: start from the final state of the case PREVIOUS (the same part; other dies, "
+                 "or none for a dwell); time.end counts from its end")
+      ->excludes(restart);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -36,6 +36,7 @@
 #include "run_summary.hpp"
 #include "state.hpp"
 #include "step_limits.hpp"
+#include "stage.hpp"
 #include "subdomain.hpp"
 #include "thermal/heat_transfer.hpp"
 #include "time_step.hpp"
@@ -51,7 +52,7 @@ extern "C" void request_stop(int signal) { g_interrupted = signal; }
 class Simulation {
  public:
   Simulation(const SolveOptions& opt, const Comm& comm);  // set-up: the model, the state at t = 0 (or restart)
-  void run();                                             // the time loop
+  void run();                                             // the time loop (or the dwell's)
   void finish();                                          // solve.json, warnings, the closing line
 
  private:
@@ -80,6 +81,7 @@ class Simulation {
   void output();
   void displacement_update(double dt);
 
+  void dwell();  // a stage in which nothing moves the part: the temperature alone, at the thermal step
   void start_presses(double h_min);
   void check_reach();
   void rebind();  // after a reference update: what is sized by the rank's local particles
@@ -110,6 +112,9 @@ class Simulation {
   int die_headroom_ = 0;  // of the dies' own sums (their loads, a ram's reaction)
   std::vector<double> v_old_;  // v^{n-1/2} during the step (vbar at an output)
   std::int64_t first_step_ = 0;
+  double t0_ = 0;  // the run's start on the chain's clock: 0, or a stage's start
+  StageLink stage_;
+  bool staged_ = false, dwell_ = false;  // a stage of a chain; one without dies, loads or moving faces
   // what one step hands the next phases
   StressHealth stress_;
   StableStep stable_{};
@@ -124,6 +129,7 @@ class Simulation {
 
 // The step, t^n -> t^{n+1}: positions at t^n and velocities v^{n-1/2} in, both one step on out.
 void Simulation::run() {
+  if (dwell_) return dwell();
   for (;;) {
     timer_.start();
     // the end within 1e-12 of it (the round-off of the summed steps), or every ram at rest
@@ -148,6 +154,32 @@ void Simulation::run() {
     if (output_due(last)) output();             // a frame at t^n with vbar
     if (last) break;
     displacement_update(dt);                    // d^{n+1} = d^n + dt v^{n+1/2}, t^{n+1}
+    progress_->step(st_, dt, clock_.last_error, history_->row(), comm_.wtime());
+  }
+}
+
+// A dwell: nothing moves the part (no dies, loads or moving faces; its velocities were set to zero),
+// so only its temperature advances, one thermal stable step at a time, landing on the output times;
+// without heat conduction, straight to the end.
+void Simulation::dwell() {
+  for (;;) {
+    timer_.start();
+    const bool last = st_.t >= scene_.time.end * (1 - 1e-12);
+    double stop[2] = {g_interrupted != 0 ? 1.0 : 0.0, 0.0};  // a rank interrupted: every rank stops
+    comm_.max(stop, 2);
+    limits_.interrupted = stop[0] > 0;
+    if (checkpoint_due(last)) checkpoint();
+    if (limits_.interrupted) stop_on_interrupt();
+    if (history_due(last)) history(0.0, last);
+    if (output_due(last)) output();
+    if (last) break;
+    double dt = scene_.time.end - st_.t;
+    if (heat_) dt = std::min(dt, st_.thermal_dt);
+    if (clock_.next_output - st_.t > 1e-9 * scene_.time.output_interval) dt = std::min(dt, clock_.next_output - st_.t);
+    st_.t += dt;
+    st_.dt_half = dt;
+    ++st_.step;
+    if (heat_) heat_transfer();
     progress_->step(st_, dt, clock_.last_error, history_->row(), comm_.wtime());
   }
 }
@@ -310,9 +342,9 @@ void Simulation::boundary_work(double dt_avg) {
   timer_.stop(kBoundaryWork);
 }
 
-// A row every time.end / 500 (io/history.hpp), due within 1e-9 of that: the clock's round-off.
+// A row every 1/500 of the run (io/history.hpp), due within 1e-9 of that: the clock's round-off.
 bool Simulation::history_due(bool last) const {
-  const double hist_dt = scene_.time.end / 500;
+  const double hist_dt = (scene_.time.end - t0_) / 500;
   return last || st_.t >= clock_.next_history - 1e-9 * hist_dt;
 }
 
@@ -321,18 +353,18 @@ void Simulation::history(double dt, bool last) {
   const std::vector<double>& filled = fill_ ? fill_->filled(*dies_, comm_) : none;
   const HistoryRow row = history_->record(md_, st_, *dies_, filled, *ebc_, v_old_, dt, clock_.kinetic0, comm_);
   tracks_->record(md_, st_, comm_);
-  const double t_end = scene_.time.end;
+  const double t_end = scene_.time.end, run = t_end - t0_;  // the run's end and length (a stage's own)
   max_ebc_error_ = std::max(max_ebc_error_, row.ebc_error);
   clock_.last_error = row.energy_error;
   // past the start-up (docs/decisions.md, "The energy check skips the start-up"): the first 100
   // steps, and for a part that starts at rest (its energy scale grows from 0 with the tools' work)
   // the first 10 % of the run. KE / internal counts past 5 % of the run, once the internal energy
   // has formed.
-  const bool started = st_.step >= 100 && (clock_.kinetic0 > 0 || st_.t > 0.1 * t_end);
+  const bool started = st_.step >= 100 && (clock_.kinetic0 > 0 || st_.t > t0_ + 0.1 * run);
   if (started || last) clock_.max_error = std::max(clock_.max_error, row.energy_error);
-  if (st_.t > 0.05 * t_end) clock_.max_ke_ratio = std::max(clock_.max_ke_ratio, row.kinetic_internal);
-  if (st_.t > 0.5 * t_end) clock_.max_ke_ratio_late = std::max(clock_.max_ke_ratio_late, row.kinetic_internal);
-  clock_.next_history += t_end / 500;
+  if (st_.t > t0_ + 0.05 * run) clock_.max_ke_ratio = std::max(clock_.max_ke_ratio, row.kinetic_internal);
+  if (st_.t > t0_ + 0.5 * run) clock_.max_ke_ratio_late = std::max(clock_.max_ke_ratio_late, row.kinetic_internal);
+  clock_.next_history += run / 500;
   health_->after_history(md_, st_, *dies_, row.energy_error, started, comm_, last_frame_);
   timer_.stop(kHistory);
 }
@@ -384,6 +416,16 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     : opt_(opt), comm_(comm), wall0_(comm.wtime()), baseline_mb_(process_memory_mb("VmRSS:")) {
   // baseline_mb_: the program and its libraries (MPI), before any data
   scene_ = collectively(comm, [&] { return load_scene(opt.case_dir + "/scene.resolved.yaml", opt.overrides, Side::solve); });
+  std::string stage_checkpoint;  // a stage: the previous case's checkpoint, and what its dies carry over
+  DieCarry carry;
+  if (!opt.from.empty())
+    stage_ = begin_stage(opt.from, opt.case_dir, scene_, comm, stage_checkpoint, carry), staged_ = true;
+  else if (opt.restart)
+    staged_ = collectively(comm, [&] { return read_stage_link(opt.case_dir, stage_); });
+  if (staged_) {
+    apply_stage(stage_, scene_);
+    t0_ = stage_.start, dwell_ = stage_.dwell;
+  }
   md_ = collectively(comm, [&] {
     return build_model(read_subdomain(subdomain_path(opt.case_dir, comm.rank()), comm.rank(), comm.size(), scene_.prep_hash),
                        scene_);
@@ -440,6 +482,18 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   } else {
     collectively(comm, [&] { return remove_checkpoints(opt.case_dir, comm.rank()), 0; });
   }
+  if (!opt.from.empty()) {  // a stage: the previous case's final state, this stage's own records
+    collectively(comm, [&] { return read_checkpoint(stage_checkpoint, md_, st_, clock_, *dies_, &carry), 0; });
+    clock_.next_history = st_.t;  // a row at the stage's start
+    clock_.max_error = clock_.max_ke_ratio = clock_.max_ke_ratio_late = clock_.max_pressure_ratio = 0;
+    clock_.frames = 0;
+    if (dwell_) {  // the part is set down: its kinetic energy leaves the balance as work done on it
+      for (std::size_t I = 0; I < md_.n; ++I)
+        for (int i = 0; i < 3 && md_.owned[I]; ++i) st_.external_work -= 0.5 * md_.mass[I] * st_.v[3 * I + i] * st_.v[3 * I + i];
+      std::fill(st_.v.begin(), st_.v.end(), 0.0);
+    }
+    collectively(comm, [&] { return comm.rank() == 0 ? (write_stage_link(opt.case_dir, stage_), 0) : 0; });
+  }
   results_ = collectively(comm, [&] {
     return std::make_unique<ResultWriter>(opt.case_dir, md_, scene_.prep_hash, opt.restart ? clock_.frames : -1);
   });
@@ -455,7 +509,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   }
   if (scene_.material.conducting()) {
     heat_ = collectively(comm, [&] { return std::make_unique<HeatTransfer>(md_, scene_, comm); });
-    if (!opt.restart) heat_->start(md_, st_, *dies_, comm);
+    if (!opt.restart && !staged_) heat_->start(md_, st_, *dies_, comm);
   }
   history_ = std::make_unique<History>(opt.case_dir, scene_, md_, opt.restart ? st_.t : -1.0, comm);
   tracks_ = collectively(comm, [&] { return std::make_unique<PointTracks>(opt.case_dir, scene_, md_, opt.restart ? st_.t : -1.0, comm); });
@@ -530,7 +584,7 @@ void Simulation::check_reach() {
   const Scene& sc = scene_;
   int movers = int(sc.prescribed_faces.size());
   for (const Die& d : sc.dies) movers += d.motion.reach(sc.time.end) > 0 ? 1 : 0;
-  bool part_moves = norm(sc.loads.gravity) > 0 || norm(sc.initial.velocity) > 0;
+  bool part_moves = norm(sc.loads.gravity) > 0 || norm(sc.initial.velocity) > 0 || staged_;  // a stage's part may move
   for (double g : sc.initial.velocity_gradient) part_moves = part_moves || g != 0;
   for (std::size_t k = 0; k < sc.dies.size(); ++k) {
     const DieMotion& m = sc.dies[k].motion;

@@ -14,6 +14,7 @@ struct SolveOptions {
   bool quiet = false;
   double progress_s = 0;  // seconds between progress lines; 0: 2 s on a terminal, 10 s otherwise
   bool restart = false;  // continue from CASE/checkpoint (time.end may be extended with --set)
+  std::string from;      // a stage of a chain: start from this case's final state (stage.hpp)
 };
 
 void solve_case(const SolveOptions& options, const Comm& comm);

@@ -163,7 +163,8 @@ std::string restart_checkpoint(const std::string& case_dir, const Comm& comm) {
   return mine[0] == std::int64_t(step) ? newest : previous;
 }
 
-void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c, DieContact& contact) {
+void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c, DieContact& contact,
+                     const DieCarry* stage) {
   std::vector<DieTotals>& dies = contact.totals();
   H5File f(path, H5File::Mode::read);
   const std::int64_t updates = f.exists("particles/global_id") ? f.attr_int("reference_updates") : 0;
@@ -175,8 +176,15 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
                 std::to_string(kCheckpointFormat) + "); re-run from the start");
   const auto s = f.read<double>("clock/scalars");
   const auto i = f.read<std::int64_t>("clock/integers");
-  if (s.size() != kClockScalars || i.size() != 3 || i[2] != std::int64_t(dies.size()))
+  // the totals are the dies', then the rigid walls' and symmetry planes' (the same in every stage)
+  const std::size_t own = contact.size(), held = dies.size() - own, before = stage ? stage->previous_triangles.size() : own;
+  const std::size_t written_dies = before + held;
+  if (s.size() != kClockScalars || i.size() != 3 || i[2] != std::int64_t(written_dies))
     throw Error(path + ": the checkpoint's run clock or die count does not match");
+  // this case's die k is the checkpoint's die written[k] (-1: none)
+  std::vector<int> written(dies.size());
+  for (std::size_t k = 0; k < dies.size(); ++k)
+    written[k] = k >= own ? int(before + k - own) : stage ? stage->continues[k] : int(k);
   st.t = s[0], st.dt_half = s[1], c.max_error = s[2], st.external_work = s[3];
   c.next_output = s[4], c.next_history = s[5], c.dt_stable = s[6], c.kinetic0 = s[7], c.last_error = s[8],
   c.max_ke_ratio = s[9], st.update_work = s[10], st.viscous_work = s[11];
@@ -185,14 +193,27 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
   st.step = i[0], c.frames = i[1];
   const auto work = f.read<double>("dies/work", 3);
   for (std::size_t k = 0; k < dies.size(); ++k)
-    dies[k].press_work = work[3 * k], dies[k].friction_work = work[3 * k + 1], dies[k].contact_work = work[3 * k + 2];
-  if (!contact.touched().empty()) {
+    if (const int j = written[k]; j >= 0)
+      dies[k].press_work = work[3 * j], dies[k].friction_work = work[3 * j + 1], dies[k].contact_work = work[3 * j + 2];
+  if (stage)  // a die the stage leaves out: the work it did on the part stays in the balance
+    for (std::size_t j = 0; j < before; ++j)
+      if (std::find(written.begin(), written.end(), int(j)) == written.end()) st.external_work += work[3 * j + 2];
+  if (!contact.touched().empty() && !stage) {
     if (!f.exists("dies/touched")) throw Error(path + ": the checkpoint holds no die fill; re-run from the start");
     const auto touched = f.read<std::int64_t>("dies/touched");
     if (touched.size() != contact.touched().size()) throw Error(path + ": the checkpoint's die surfaces do not match this case's");
     contact.touched() = touched;
+  } else if (!contact.touched().empty() && f.exists("dies/touched")) {  // a stage: the continuing dies' fill
+    const auto touched = f.read<std::int64_t>("dies/touched");
+    std::vector<std::size_t> first(before + 1, 0);
+    for (std::size_t j = 0; j < before; ++j) first[j + 1] = first[j] + stage->previous_triangles[j];
+    if (touched.size() != first.back()) throw Error(path + ": the checkpoint's die surfaces do not match its case's");
+    for (std::size_t k = 0; k < own; ++k)
+      if (const int j = written[k]; j >= 0)
+        std::copy(touched.begin() + std::ptrdiff_t(first[std::size_t(j)]), touched.begin() + std::ptrdiff_t(first[std::size_t(j) + 1]),
+                  contact.touched().begin() + std::ptrdiff_t(contact.triangle0(k)));
   }
-  if (f.exists("dies/rams")) {  // the rams of the dies driven by their press
+  if (f.exists("dies/rams") && !stage) {  // the rams of the dies driven by their press
     const auto rows = f.read<double>("dies/rams", State::kRamValues);
     st.rams.resize(rows.size() / State::kRamValues);
     for (std::size_t r = 0; r < st.rams.size(); ++r) {
@@ -248,11 +269,12 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
     const auto ts = f.read<double>("thermal/scalars");
     const auto ti = f.read<std::int64_t>("thermal/integers");
     const auto die_heat = f.read<double>("thermal/die_heat");
-    if (st.heat_pending.size() != md.m || ts.size() != 3 || ti.size() != 2 || die_heat.size() != dies.size())
+    if (st.heat_pending.size() != md.m || ts.size() != 3 || ti.size() != 2 || die_heat.size() != written_dies)
       throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
     st.thermal_t = ts[0], st.thermal_dt = ts[1], st.ambient_heat = ts[2];
     st.thermal_step = ti[0], st.thermal_updates = ti[1];
-    for (std::size_t k = 0; k < dies.size(); ++k) dies[k].heat = die_heat[k];
+    for (std::size_t k = 0; k < dies.size(); ++k)
+      if (const int j = written[k]; j >= 0) dies[k].heat = die_heat[std::size_t(j)];
   }
   const auto u = f.read<double>("particles/u", 3), v = f.read<double>("particles/v", 3);
   if (updates == 0) {

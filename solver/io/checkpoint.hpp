@@ -45,8 +45,19 @@ std::string restart_checkpoint(const std::string& case_dir, const Comm& comm);
 void write_checkpoint(const std::string& case_dir, const Model& md, const State& st, const RunClock& clock,
                       const DieContact& dies);
 
+// A stage of a chain (stage.hpp) reads the previous case's checkpoint, whose dies are not this
+// case's: per die of this case the previous case's die it continues (-1: a new die, from rest and
+// untouched), and the previous case's triangle count per die.
+struct DieCarry {
+  std::vector<int> continues;
+  std::vector<std::size_t> previous_triangles;
+};
+
 // Reads a checkpoint of this rank into st/clock/dies; checks it belongs to this model. After reference
-// updates it also sets md.point_X and st.u_ref, J_ref (the caller then rebuilds the model).
-void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& clock, DieContact& dies);
+// updates it also sets md.point_X and st.u_ref, J_ref (the caller then rebuilds the model). With
+// `stage`, the dies' totals and fill are carried by it, a die left out adds its contact work to the
+// part's external work (the balance keeps it), and the presses start anew.
+void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& clock, DieContact& dies,
+                     const DieCarry* stage = nullptr);
 
 }  // namespace rk
