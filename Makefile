@@ -4,6 +4,7 @@
 #   make demo   Taylor bar from CAD to VTK on 2 ranks, printing where the results are
 #   make test   build and run the whole test suite (ctest), then the sanitizer run (test-asan)
 #   make fuzz   libFuzzer on the scene parser and the subdomain reader (FUZZ_SECONDS each)
+#   make chain  a forging chain: hot upsetting, 5 s in air, a second blow (geometry/upsetting/chain.mk)
 #   make bench  strong scaling of a >= 100k-particle Taylor bar on 1 and 2 ranks (BENCH_ARGS=...)
 SHELL := /bin/bash
 MAKEFLAGS += --no-print-directory
@@ -21,7 +22,7 @@ export OMPI_ALLOW_RUN_AS_ROOT := 1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
 export OMPI_MCA_rmaps_base_oversubscribe := 1
 
-.PHONY: deps build demo test test-asan bench fuzz clean
+.PHONY: deps build demo test test-asan chain bench fuzz clean
 deps:
 	@missing=$$(for p in $(DEB_PACKAGES); do \
 	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
@@ -50,6 +51,9 @@ test-asan: deps
 	@cmake --build build-asan -j $(JOBS) > build-asan/build.log 2>&1 || (tail -40 build-asan/build.log; exit 1)
 	@cd build-asan && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --output-on-failure -j $(JOBS) -L asan
+
+chain: build
+	@$(MAKE) -f geometry/upsetting/chain.mk BIN=$(BUILD)/bin OUT=$(BUILD)/chain RANKS=$(RANKS)
 
 bench: build
 	@/usr/bin/python3 scripts/bench.py --bin $(BUILD)/bin --work $(BUILD)/bench $(BENCH_ARGS)

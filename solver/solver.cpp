@@ -160,8 +160,11 @@ void Simulation::run() {
 
 // A dwell: nothing moves the part (no dies, loads or moving faces; its velocities were set to zero),
 // so only its temperature advances, one thermal stable step at a time, landing on the output times;
-// without heat conduction, straight to the end.
+// without heat conduction, straight to the end. The stress at the start (the previous stage's
+// last, which its checkpoint leaves to the next step) is the dwell's.
 void Simulation::dwell() {
+  deformation_gradient();
+  stress_update();
   for (;;) {
     timer_.start();
     const bool last = st_.t >= scene_.time.end * (1 - 1e-12);
@@ -487,11 +490,15 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     clock_.next_history = st_.t;  // a row at the stage's start
     clock_.max_error = clock_.max_ke_ratio = clock_.max_ke_ratio_late = clock_.max_pressure_ratio = 0;
     clock_.frames = 0;
-    if (dwell_) {  // the part is set down: its kinetic energy leaves the balance as work done on it
-      for (std::size_t I = 0; I < md_.n; ++I)
-        for (int i = 0; i < 3 && md_.owned[I]; ++i) st_.external_work -= 0.5 * md_.mass[I] * st_.v[3 * I + i] * st_.v[3 * I + i];
-      std::fill(st_.v.begin(), st_.v.end(), 0.0);
-    }
+    // The kinetic energy the stage changes is work done on the part, so the balance goes on: another
+    // mass scaling scales it (the masses are the same masses scaled), a dwell sets the part down.
+    const double before = collectively(comm, [&] { return read_run_summary(opt.from + "/solve.json").mass_scaling; });
+    double kinetic = 0;  // this rank's, at the stage's masses
+    for (std::size_t I = 0; I < md_.n; ++I)
+      for (int i = 0; i < 3 && md_.owned[I]; ++i) kinetic += 0.5 * md_.mass[I] * st_.v[3 * I + i] * st_.v[3 * I + i];
+    const double previous = kinetic * before / md_.mass_scaling;
+    st_.external_work += (dwell_ ? 0.0 : kinetic) - previous;
+    if (dwell_) std::fill(st_.v.begin(), st_.v.end(), 0.0);
     collectively(comm, [&] { return comm.rank() == 0 ? (write_stage_link(opt.case_dir, stage_), 0) : 0; });
   }
   results_ = collectively(comm, [&] {
