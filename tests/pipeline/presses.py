@@ -9,7 +9,8 @@ billet D0 = 20 mm, H0 = 10 mm on a frictionless anvil, a quarter modeled, 2.5 mm
   the ram's kinetic energy is spent against the load above the limit, int (F(s) - F_lim) ds = M v^2 / 2
   from where the closed-form force reaches the limit; the peak load exceeds the limit by the ram's
   inertial overshoot v sqrt(M dF/ds) at most; a stall is a warning in solve.json and report.md;
-- with a high limit it stops at its stroke; with a power limit, speed x force stays at that power;
+- with a high limit it stops at its stroke; with a power limit, speed x force stays at that power, and
+  the same on 2 ranks bitwise;
 - the die's contact loads per triangle sum to its force; the triangles it touched cover the billet's end;
 - bad input: no blow energy, a ram too light for the contact, a symmetry plane across the ram's motion."""
 import csv
@@ -215,6 +216,16 @@ most = max(float(x["ram.speed"]) * float(x["ram.force"]) for x in p)
 # 2026-12-02 at most 5.011 kW
 rkcase.check(most < 5e3 * 1.02 and float(p[-1]["ram.stroke"]) == 1.5e-3,
              f"a 5 kW power limit: speed x force at most {most / 1e3:.3f} kW, and it reaches its stroke")
+# the same on 2 ranks: the ram's speed follows the fixed-point reaction summed over the ranks
+power2 = tools.case("hydraulic_power_2")
+tools.prep(power2, 2, scene=GEO / "scene_hydraulic.yaml", sets=SPACING)
+tools.solve(power2, 2, sets=["dies[0].motion.hydraulic.power_limit=5e3", "dies[0].motion.hydraulic.stroke=1.5e-3"])
+tools.post(power)
+tools.post(power2)
+ram = ("time", "ram.stroke", "ram.speed", "ram.force", "ram.delivered")
+rkcase.check(all(np.array_equal(x, y) for x, y in zip(last_frame(power), last_frame(power2)))
+             and [[r[k] for k in ram] for r in p] == [[r[k] for k in ram] for r in rows(power2)],
+             "the hydraulic press on 2 ranks: every history row of the ram and the last frame bitwise equal to 1 rank")
 
 low = copy(hyd, "hydraulic_low")
 out = tools.solve(low, 1, sets=["dies[0].motion.hydraulic.force_limit=1e3"])
