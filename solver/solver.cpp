@@ -179,8 +179,7 @@ void Simulation::dwell() {
     double dt = scene_.time.end - st_.t;
     if (heat_) dt = std::min(dt, st_.thermal_dt);
     if (clock_.next_output - st_.t > 1e-9 * scene_.time.output_interval) dt = std::min(dt, clock_.next_output - st_.t);
-    st_.t += dt;
-    st_.dt_half = dt;
+    st_.t += dt;  // dt_half stays the last mechanical step's: the next stage's first step averages with it
     ++st_.step;
     if (heat_) heat_transfer();
     progress_->step(st_, dt, clock_.last_error, history_->row(), comm_.wtime());
@@ -543,9 +542,15 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   last_checkpoint_wall_ = comm.wtime();
   setup_s_ = comm.wtime() - wall0_;
   const std::string first_die = scene_.dies.empty() ? "" : scene_.dies[0].name;
-  progress_ = std::make_unique<Progress>(!opt.quiet && comm.rank() == 0, comm.size(), comm.wtime(), opt.progress_s,
+  progress_ = std::make_unique<Progress>(!opt.quiet && comm.rank() == 0, comm.size(), comm.wtime(), opt.progress_s, t0_,
                                          scene_.time.end, history_->columns(), first_die, st_);
   progress_->banner(opt.restart, setup_s_, md_.mass_scaling);
+  if (staged_ && !opt.restart && !opt.quiet && comm.rank() == 0) {
+    int kept = 0;
+    for (int k : stage_.continues) kept += k >= 0 ? 1 : 0;
+    std::printf("rksolve: a stage from %s at t = %g s: %d dies going on, %d new%s\n", stage_.from.c_str(), t0_, kept,
+                int(stage_.continues.size()) - kept, dwell_ ? "; a dwell: the temperature alone, at the thermal step" : "");
+  }
   if (comm.rank() == 0)  // suspicious temperatures before the run, not only in its report
     for (const std::string& w : temperature_warnings(scene_)) std::fprintf(stderr, "rksolve: warning: %s\n", w.c_str());
   g_interrupted = 0;

@@ -8,10 +8,10 @@
 
 namespace rk {
 
-Progress::Progress(bool show, int ranks, double now, double interval, double t_end,
+Progress::Progress(bool show, int ranks, double now, double interval, double t0, double t_end,
                    const std::vector<std::string>& columns, const std::string& first_die, const State& st,
                    std::FILE* out)
-    : show_(show), ranks_(ranks), out_(out), t_end_(t_end), last_wall_(now), last_step_(st.step), last_t_(st.t) {
+    : show_(show), ranks_(ranks), out_(out), t0_(t0), t_end_(t_end), last_wall_(now), last_step_(st.step), last_t_(st.t) {
   // Under mpirun a rank's stdout is a pseudo-terminal even when mpirun's output goes to a file, so
   // the updating line is kept for runs started without a launcher; launched runs print plain lines.
   const bool launched = std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMI_RANK") || std::getenv("PMIX_RANK");
@@ -51,7 +51,7 @@ void Progress::step(const State& st, double dt, double energy_error, const std::
                   1e3 * history_row[std::size_t(press_column_)], 1e-3 * history_row[std::size_t(press_column_) + 1]);
   // a terminal gets one updating line; a pipe or a log gets a plain line
   std::fprintf(out_, "%srksolve: t = %.4g s (%5.1f %%)  step %lld  %.0f steps/s  dt = %.3g s%s  energy error %.2e  ETA %.0f s%s",
-              terminal_ ? "\r" : "", st.t, 100 * st.t / t_end_, static_cast<long long>(st.step), rate, dt, press,
+              terminal_ ? "\r" : "", st.t, 100 * (st.t - t0_) / (t_end_ - t0_), static_cast<long long>(st.step), rate, dt, press,
               energy_error, eta, terminal_ ? "   " : "\n");
   std::fflush(out_);
   line_open_ = terminal_;

@@ -14,10 +14,11 @@ namespace rk {
 class Progress {
  public:
   // show: rank 0 and not --quiet; now: the wall clock (s); interval: seconds between lines (0: 2 s
-  // on a terminal, 10 s otherwise); columns: the history's, the line shows the first die's stroke
-  // and force from the last row.
-  Progress(bool show, int ranks, double now, double interval, double t_end, const std::vector<std::string>& columns,
-           const std::string& first_die, const State& st, std::FILE* out = stdout);
+  // on a terminal, 10 s otherwise); the run from t0 (0, or a stage's start) to t_end; columns: the
+  // history's, the line shows the first die's stroke and force from the last row.
+  Progress(bool show, int ranks, double now, double interval, double t0, double t_end,
+           const std::vector<std::string>& columns, const std::string& first_die, const State& st,
+           std::FILE* out = stdout);
 
   void banner(bool restart, double setup_s, double mass_scaling) const;
   // After a step, at wall time `now`: prints when the interval has passed.
@@ -28,7 +29,7 @@ class Progress {
   bool show_;
   int ranks_;
   std::FILE* out_;
-  double t_end_;
+  double t0_, t_end_;
   bool terminal_;        // one updating line (a terminal, no launcher), else plain lines
   double interval_;
   bool line_open_ = false;  // an updating line is on the terminal: end it before other output

@@ -26,7 +26,7 @@ TEST(Progress, TimeLeftFromTheLastIntervalsPace) {
   std::FILE* f = std::tmpfile();
   ASSERT_NE(f, nullptr);
   rk::State st;
-  rk::Progress progress(true, 2, 100.0, 10.0, 1e-3, kColumns, "die", st, f);
+  rk::Progress progress(true, 2, 100.0, 10.0, 0.0, 1e-3, kColumns, "die", st, f);
   const std::vector<double> row = {0, 0, 1.25e-3, 35e3};
   // the pace halves: 0.2 ms in the first 10 s, 0.1 ms in the next 10 s; 0.7 ms are left
   st.t = 0.2e-3, st.step = 1000;
@@ -45,17 +45,31 @@ TEST(Progress, TimeLeftFromTheLastIntervalsPace) {
   std::fclose(f);
 }
 
+TEST(Progress, AStageCountsFromItsStart) {
+  std::FILE* f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  rk::State st;
+  st.t = 1.0;  // a stage from 1 s to 3 s on the chain's clock
+  rk::Progress progress(true, 1, 0.0, 1.0, 1.0, 3.0, {"time"}, "", st, f);
+  st.t = 1.5;
+  progress.step(st, 1e-3, 0, {0}, 2.0);
+  const std::string text = written(f);
+  EXPECT_NE(text.find("t = 1.5 s ( 25.0 %)"), std::string::npos) << text;
+  EXPECT_NE(text.find("ETA 6 s"), std::string::npos) << text;  // 1.5 s left at 0.5 s per 2 s
+  std::fclose(f);
+}
+
 TEST(Progress, NoDieNoStrokeAndQuietPrintsNothing) {
   std::FILE* f = std::tmpfile();
   ASSERT_NE(f, nullptr);
   rk::State st;
-  rk::Progress plain(true, 1, 0.0, 1.0, 1.0, {"time"}, "", st, f);
+  rk::Progress plain(true, 1, 0.0, 1.0, 0.0, 1.0, {"time"}, "", st, f);
   st.t = 0.5, st.step = 10;
   plain.step(st, 1e-3, 0, {0}, 2.0);
   const std::string text = written(f);
   EXPECT_NE(text.find("ETA 2 s"), std::string::npos) << text;
   EXPECT_EQ(text.find("mm"), std::string::npos) << text;
-  rk::Progress quiet(false, 1, 0.0, 1.0, 1.0, {"time"}, "", st, f);
+  rk::Progress quiet(false, 1, 0.0, 1.0, 0.0, 1.0, {"time"}, "", st, f);
   quiet.banner(false, 0.1, 1);
   st.t = 0.7;
   quiet.step(st, 1e-3, 0, {0}, 5.0);
