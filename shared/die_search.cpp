@@ -67,6 +67,12 @@ DieSearch::DieSearch(const DieSurface& s, double margin) : s_(s) {
     const double len = 2 * s.area_normal(t, n);  // |n| (the doubling is exact)
     for (int i = 0; i < 3; ++i) normal_.push_back(len > 0 ? n[i] / len : 0.0), e1[i] = v[1][i] - v[0][i];
     edges += std::sqrt(dot3(e1, e1));
+    for (int k = 0; k < 3; ++k) {  // the angle at corner k between its two edges
+      double p[3], q[3];
+      for (int i = 0; i < 3; ++i) p[i] = v[(k + 1) % 3][i] - v[k][i], q[i] = v[(k + 2) % 3][i] - v[k][i];
+      const double pq = std::sqrt(dot3(p, p) * dot3(q, q));
+      angle_.push_back(pq > 0 ? std::acos(std::clamp(dot3(p, q) / pq, -1.0, 1.0)) : 0.0);
+    }
   }
   if (nt == 0) {
     start_.assign(2, 0);
@@ -127,12 +133,20 @@ DieHit DieSearch::nearest(const double x[3]) const {
     const double d2 = (x[0] - c[0]) * (x[0] - c[0]) + (x[1] - c[1]) * (x[1] - c[1]) + (x[2] - c[2]) * (x[2] - c[2]);
     if (d2 > reach) continue;
     const double tol = std::isfinite(best) ? 1e-18 + 1e-12 * best : 0.0;
+    // the triangle's weight in the pseudo-normal: its angle where the closest point is one of its
+    // corners (every triangle around that vertex finds it there), else 1 (its face, or an edge with
+    // its neighbour)
+    double weight = 1;
+    for (int k = 0; k < 3; ++k) {
+      const double* corner = s_.corner(std::size_t(t), k);
+      if (c[0] == corner[0] && c[1] == corner[1] && c[2] == corner[2]) weight = angle_[3 * std::size_t(t) + std::size_t(k)];
+    }
     if (!std::isfinite(best) || d2 < best - tol) {  // a strictly closer point: restart the pseudo-normal
       best = d2;
       hit.triangle = t;
-      for (int i = 0; i < 3; ++i) best_point[i] = c[i], pseudo[i] = normal_[3 * t + i];
+      for (int i = 0; i < 3; ++i) best_point[i] = c[i], pseudo[i] = weight * normal_[3 * t + i];
     } else if (d2 <= best + tol) {  // the same point seen from a neighbouring triangle (edge, vertex)
-      for (int i = 0; i < 3; ++i) pseudo[i] += normal_[3 * t + i];
+      for (int i = 0; i < 3; ++i) pseudo[i] += weight * normal_[3 * t + i];
     }
   }
   if (!std::isfinite(best)) return hit;

@@ -15,7 +15,10 @@ namespace rk {
 struct DieHit {
   bool found = false;   // a triangle within the search margin
   double gap = 0;       // signed distance: < 0 inside the die
-  double normal[3] = {0, 0, 0};  // unit outward normal at the closest point (pseudo-normal at edges)
+  // unit outward normal at the closest point: the triangle's; at an edge the sum of its two
+  // triangles'; at a vertex the angle-weighted pseudo-normal (Baerentzen & Aanaes 2005: each
+  // triangle's normal times its angle there), whose sign is right for any point near the vertex
+  double normal[3] = {0, 0, 0};
   std::int32_t triangle = -1;    // the (first) triangle holding the closest point
 };
 
@@ -34,6 +37,7 @@ class DieSearch {
  private:
   const DieSurface& s_;
   std::vector<double> normal_, box_;  // per triangle: unit normal; lo[3], hi[3]
+  std::vector<double> angle_;         // per triangle: its angle at each corner (rad)
   double margin_ = 0;
   double lo_[3]{}, h_ = 1;
   std::int64_t dims_[3]{1, 1, 1};

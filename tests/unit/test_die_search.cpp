@@ -61,4 +61,32 @@ TEST(DieSearch, SignedGapOutsideInsideEdgesCorners) {
   EXPECT_FALSE(search.nearest(far).found) << "beyond the search margin";
 }
 
+// A steep square pyramid (apex at the origin, base 2 x 2 at z = -3) whose +x face is a fan of three
+// triangles at the apex. A point outside, nearest the apex, toward the -x face: the plain sum of the
+// normals there, 3 n(+x) + n(-x) + n(+y) + n(-y), points away from it (the point would read inside, gap
+// < 0); weighted by the triangles' angles at the apex, the fan counts as the one face it is.
+TEST(DieSearch, PseudoNormalAtAVertexWeightedByAngles) {
+  rk::DieSurface s;
+  const double h = 3, a = 1;
+  s.vertices = {0, 0, 0, a, -a, -h, a, a, -h, -a, a, -h, -a, -a, -h};  // apex 0, base 1..4 counter-clockwise
+  const double fan[2][3] = {{a, -a / 3, -h}, {a, a / 3, -h}};  // the +x face's edge split in three
+  for (const auto& v : fan) s.vertices.insert(s.vertices.end(), v, v + 3);
+  s.triangles = {0, 1, 5, 0, 5, 6, 0, 6, 2,  // +x, fanned (counter-clockwise from outside)
+                 0, 2, 3, 0, 3, 4, 0, 4, 1,  // +y, -x, -y
+                 1, 4, 3, 1, 3, 2};          // the base
+  const rk::DieSearch search(s, 1.0);
+  const double c = a / std::sqrt(h * h + a * a), sn = h / std::sqrt(h * h + a * a);  // n(+x) = (sn, 0, c)
+  const double nx[3] = {sn, 0, c}, mx[3] = {-sn, 0, c}, py[3] = {0, sn, c}, my[3] = {0, -sn, c};
+  double x[3];
+  for (int i = 0; i < 3; ++i) x[i] = 0.01 * (mx[i] + 0.2 * py[i] + 0.2 * my[i] + 0.05 * nx[i]);
+  const double plain[3] = {3 * nx[0] + mx[0] + py[0] + my[0], 3 * nx[1] + mx[1] + py[1] + my[1], 3 * nx[2] + mx[2] + py[2] + my[2]};
+  ASSERT_LT(x[0] * plain[0] + x[1] * plain[1] + x[2] * plain[2], 0.0);  // the plain sum would call it inside
+  const rk::DieHit hit = search.nearest(x);
+  ASSERT_TRUE(hit.found);
+  EXPECT_NEAR(hit.gap, std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]), 1e-15);  // outside, at the apex
+  EXPECT_NEAR(hit.normal[0], 0, 1e-12);  // the four faces' angles at the apex are equal: straight up
+  EXPECT_NEAR(hit.normal[1], 0, 1e-12);
+  EXPECT_NEAR(hit.normal[2], 1, 1e-12);
+}
+
 }  // namespace
