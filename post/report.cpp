@@ -14,6 +14,7 @@
 #include "history_columns.hpp"
 #include "phase_names.hpp"
 #include "run_summary.hpp"
+#include "text_file.hpp"
 
 namespace rk {
 namespace {
@@ -74,7 +75,7 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
   }
   const auto values = split(last);
 
-  std::ofstream r(case_dir + "/report.md");
+  std::ostringstream r;
   r << "# rkforge run report\n\n";
   r << "| | |\n|---|---|\n";
   r << "| scene | `" << prep.value("scene", "?") << "` |\n";
@@ -160,7 +161,7 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
       if (e.path().extension() == ".png") pictures.push_back(e.path().filename().string());
   std::sort(pictures.begin(), pictures.end());
   for (const auto& f : pictures) r << "- ![" << fs::path(f).stem().string() << "](plots/" << f << ")\n";
-  if (!r.flush()) throw Error(case_dir + "/report.md: cannot write");
+  write_text_file(case_dir + "/report.md", r.str());
 }
 
 }  // namespace rk

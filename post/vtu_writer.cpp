@@ -3,10 +3,14 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 
 #include "error.hpp"
+#include "text_file.hpp"
 
 namespace rk {
 namespace {
@@ -118,20 +122,28 @@ void write_vtu(const std::string& path, const std::vector<double>& points, const
     f << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n";
     data.write(f);
     f << "</VTKFile>\n";
-    if (!f.flush()) throw Error(path + ": write failed (disk full?)");
+    f.close();
+    if (!f) {
+      std::remove(tmp.c_str());
+      throw Error(path + ": write failed (disk full?)");
+    }
   }
-  std::rename(tmp.c_str(), path.c_str());
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    std::remove(tmp.c_str());
+    throw Error(path + ": cannot write (renaming " + tmp + " over it: " + std::strerror(err) + ")");
+  }
 }
 
 void write_pvd(const std::string& path, const std::vector<PvdEntry>& entries) {
-  std::ofstream f(path);
-  if (!f) throw Error(path + ": cannot write the ParaView collection");
+  std::ostringstream f;
   f << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
   f.precision(12);
   for (const auto& e : entries)
     f << "    <DataSet timestep=\"" << e.time << "\" part=\"" << e.part << "\" name=\"" << e.name << "\" file=\""
       << e.file << "\"/>\n";
   f << "  </Collection>\n</VTKFile>\n";
+  write_text_file(path, f.str());
 }
 
 }  // namespace rk

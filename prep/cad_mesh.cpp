@@ -9,6 +9,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "checked_int.hpp"
 #include "error.hpp"
 #include "gmsh_session.hpp"
 #include "stl_check.hpp"
@@ -108,6 +109,8 @@ VolumeMesh mesh_with_gmsh(const MeshRequest& r) {
       mesh.cell_offsets.push_back(std::int32_t(mesh.cell_nodes.size()));
     }
   }
+  // 32-bit offsets and METIS's 32-bit indices: the last offset fits only if every one does
+  checked_int(std::int64_t(mesh.cell_nodes.size()), r.cad + ": the mesh's cell-node entries");
   if (mesh.cell_count() == 0) throw Error(r.cad + ": meshing produced no 3-D cells (open surface or zero volume?)");
 
   mesh.X.resize(3 * order.size());
@@ -213,6 +216,7 @@ BoundaryFaces boundary_faces(const VolumeMesh& mesh) {
       out.cell.push_back(std::int32_t(c));
     }
   }
+  checked_int(std::int64_t(out.face_nodes.size()), "the mesh's boundary-face node entries");
   return out;
 }
 

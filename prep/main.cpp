@@ -17,6 +17,7 @@
 #include "process_memory.hpp"
 #include "scene.hpp"
 #include "subdomain.hpp"
+#include "text_file.hpp"
 
 namespace fs = std::filesystem;
 
@@ -148,7 +149,7 @@ int run(int argc, char** argv) {
   timer.run("write", [&] {
     fs::create_directories(fs::path(out) / "sub");
     for (const auto& s : subs) rk::write_subdomain(rk::subdomain_path(out, int(s.rank)), s);
-    std::ofstream(fs::path(out) / "scene.resolved.yaml") << scene.resolved_yaml;
+    rk::write_text_file((fs::path(out) / "scene.resolved.yaml").string(), scene.resolved_yaml);
     return 0;
   });
 
@@ -183,7 +184,7 @@ int run(int argc, char** argv) {
       {"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()},
       {"peak_memory_mb", rk::process_memory_mb("VmHWM:")},
       {"partition", report}};
-  std::ofstream(fs::path(out) / "prep.json") << prep.dump(2) << "\n";
+  rk::write_text_file((fs::path(out) / "prep.json").string(), prep.dump(2) + "\n");
   if (!quiet) {
     std::printf("rkprep: %zu particles (%zu on the surface), %zu cells, %zu integration points, volume %.6g m^3, "
                 "spacing %.4g m (median cell edge; asked %.4g m)\n",

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "error.hpp"
+#include "text_file.hpp"
 
 namespace rk {
 
@@ -19,9 +20,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(RunSummary, format, steps, time,
                                                 phases, warnings, presses)
 
 void write_run_summary(const std::string& path, const RunSummary& summary) {
-  std::ofstream out(path);
-  out << nlohmann::json(summary).dump(2) << "\n";
-  if (!out.flush()) throw Error(path + ": cannot write");
+  write_text_file(path, nlohmann::json(summary).dump(2) + "\n");
 }
 
 RunSummary read_run_summary(const std::string& path) {

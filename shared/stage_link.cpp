@@ -6,16 +6,14 @@
 #include <fstream>
 
 #include "error.hpp"
+#include "text_file.hpp"
 
 namespace rk {
 
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StageLink, from, start, die_start, continues, dwell)
 
 void write_stage_link(const std::string& case_dir, const StageLink& link) {
-  const std::string path = case_dir + "/" + kStageLinkFile;
-  std::ofstream out(path);
-  out << nlohmann::json(link).dump(2) << "\n";
-  if (!out.flush()) throw Error(path + ": cannot write");
+  write_text_file(case_dir + "/" + kStageLinkFile, nlohmann::json(link).dump(2) + "\n");
 }
 
 bool read_stage_link(const std::string& case_dir, StageLink& link) {

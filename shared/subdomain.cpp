@@ -9,6 +9,7 @@
 #include "error.hpp"
 #include "h5file.hpp"
 #include "hash.hpp"
+#include "text_file.hpp"
 
 namespace rk {
 
@@ -32,7 +33,7 @@ std::string subdomain_hash_path(const std::string& path) { return path + ".fnv1a
 
 void write_subdomain(const std::string& path, const Subdomain& s) {
   write_subdomain_file(path, s);
-  std::ofstream(subdomain_hash_path(path)) << file_hash(path) << "\n";
+  write_text_file(subdomain_hash_path(path), file_hash(path) + "\n");
 }
 
 void write_subdomain_file(const std::string& path, const Subdomain& s) {

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "boundary/constraints.hpp"
+#include "checked_int.hpp"
 #include "error.hpp"
 #include "rk/local_shapes.hpp"
 
@@ -40,7 +41,7 @@ void build_shape_functions(Model& md, const Subdomain& sub, const LocalShapes& s
     const std::size_t k0 = md.nbr.size();
     const RkResult r = shapes.append(&md.point_X[3 * g], md.nbr, md.N, md.dN);  // ascending global id
     require_regular(md, r, &sub.point_X[3 * g], md.nbr.size() - k0, "integration point");
-    md.nbr_offsets.push_back(std::int32_t(md.nbr.size()));
+    md.nbr_offsets.push_back(std::int64_t(md.nbr.size()));
   }
 }
 
@@ -84,7 +85,7 @@ void build_smoothed_gradients(Model& md, const Subdomain& sub, const LocalShapes
       if (!mark[I]) mark[I] = 1, md.nbr.push_back(I);
     std::sort(md.nbr.begin() + std::ptrdiff_t(k0), md.nbr.end());
     for (auto k = k0; k < md.nbr.size(); ++k) mark[md.nbr[k]] = 0;
-    md.nbr_offsets.push_back(std::int32_t(md.nbr.size()));
+    md.nbr_offsets.push_back(std::int64_t(md.nbr.size()));
   }
   md.N.assign(md.nbr.size(), 0.0);
   md.dN.assign(3 * md.nbr.size(), 0.0);
@@ -147,6 +148,8 @@ void build_material_rows(Model& md, const LocalShapes& shapes) {
     }
     md.material_offsets.push_back(std::int32_t(md.material_cols.size()));
   }
+  // the offsets grow with I: the last fits in 32 bits only if every one does
+  checked_int(std::int64_t(md.material_cols.size()), "rank " + std::to_string(md.rank) + ": the particles' material rows (entries)");
 }
 
 }  // namespace

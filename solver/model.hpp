@@ -47,7 +47,8 @@ struct Model {
   std::size_t m = 0;
   std::vector<double> weight;   // reference volume at t = 0 (m^3)
   std::vector<double> point_X;  // 3 per point: its position in the reference configuration (Xr)
-  std::vector<std::int32_t> nbr_offsets, nbr;
+  std::vector<std::int64_t> nbr_offsets;  // 64-bit: a rank's points times their neighbours may pass 2^31
+  std::vector<std::int32_t> nbr;
   std::vector<double> N, dN;   // N_I(X_g); dN_I/dX (3 per column)
   std::vector<double> dN_max;  // max_I |grad N_I(X_g)|, bounds the force contributions
 

@@ -108,7 +108,8 @@ class Simulation {
   WriteLastFrame last_frame_;
   PhaseTimer timer_;
   PressureBound pressure_bound_;
-  int headroom_ = 0;  // of the fixed-point force sums
+  int headroom_ = 0;  // of the fixed-point force sums: their resolution (raised in a step that needs it)
+  ForceTerms force_terms_;  // the most terms of each kind a particle's force sum receives
   int die_headroom_ = 0;  // of the dies' own sums (their loads, a ram's reaction)
   std::vector<double> v_old_;  // v^{n-1/2} during the step (vbar at an output)
   std::int64_t first_step_ = 0;
@@ -254,6 +255,7 @@ void Simulation::time_step() {
   const double update_strain = scene_.reference_updates.strain;
   limits_.dt = stable_.dt;
   limits_.force_bound = bound;
+  limits_.contact_bound = contact_bound_;
   limits_.unhealthy = !healthy_;
   // rank 0's clock decides whether a wall-clock checkpoint is due (written at the next step's top)
   limits_.checkpoint_clock = comm_.rank() == 0 && scene_.output.checkpoint_minutes > 0 &&
@@ -300,7 +302,8 @@ void Simulation::heat_transfer() {
 
 // In fixed point: the boundary points'' and the contacts' partials travel while the interior's are computed.
 void Simulation::internal_force() {
-  const FixedScale scale = FixedScale::for_bound(limits_.force_bound, headroom_);
+  const int headroom = step_headroom(headroom_, force_terms_, limits_.force_bound, limits_.contact_bound);
+  const FixedScale scale = FixedScale::for_bound(limits_.force_bound, headroom);
   clear_internal_force(st_);
   add_internal_force(md_, st_, scale, md_.boundary_points);
   dies_->add_to(md_, st_, scale);  // die contact forces of the owned particles and points, once over all ranks
@@ -408,6 +411,7 @@ void Simulation::rebind() {
   dies_->touched() = touched;
   exchange_.emplace(md_, 3);
   headroom_ = force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm_);
+  force_terms_ = force_terms(md_, *dies_, comm_);
   if (heat_) heat_ = std::make_unique<HeatTransfer>(md_, scene_, comm_);  // the capacities on the new reference
   results_ = collectively(
       comm_, [&] { return std::make_unique<ResultWriter>(opt_.case_dir, md_, scene_.prep_hash, results_->frames()); });
@@ -508,6 +512,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   const int die_count = int(md_.dies.size());
   exchange_.emplace(md_, 3);
   headroom_ = force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm);
+  force_terms_ = force_terms(md_, *dies_, comm);
   v_old_.assign(st_.v.size(), 0.0);
   if (st_.reference_updates > 0) {  // a restart after updates: back onto the checkpoint's reference
     collectively(comm, [&] { return rebuild_on_reference(md_, st_, scene_, comm), 0; });

@@ -9,6 +9,7 @@ namespace rk {
 struct StepLimits {
   double dt = 0;                  // the stable step, min over ranks (s)
   double force_bound = 0;         // the largest force contribution to one particle (fixed-point scale)
+  double contact_bound = 0;       // the largest contact force contribution (<= force_bound)
   bool unhealthy = false;         // a rank's stress update or forces are not physical
   bool checkpoint_clock = false;  // rank 0's wall clock says a checkpoint is due
   double strain_since_update = 0; // largest Green strain since the last reference update
@@ -19,12 +20,12 @@ struct StepLimits {
 
   // Collective: the limits of all ranks, in one reduction.
   void reduce(const Comm& comm) {
-    double r[9] = {-dt, force_bound, unhealthy ? 1.0 : 0.0, checkpoint_clock ? 1.0 : 0.0, strain_since_update,
-                   symmetry_depth, pressure_ratio, interrupted ? 1.0 : 0.0, reaction_bound};
-    comm.max(r, 9);
+    double r[10] = {-dt, force_bound, unhealthy ? 1.0 : 0.0, checkpoint_clock ? 1.0 : 0.0, strain_since_update,
+                    symmetry_depth, pressure_ratio, interrupted ? 1.0 : 0.0, reaction_bound, contact_bound};
+    comm.max(r, 10);
     dt = -r[0], force_bound = r[1], unhealthy = r[2] > 0, checkpoint_clock = r[3] > 0;
     strain_since_update = r[4], symmetry_depth = r[5], pressure_ratio = r[6], interrupted = r[7] > 0;
-    reaction_bound = r[8];
+    reaction_bound = r[8], contact_bound = r[9];
   }
 };
 

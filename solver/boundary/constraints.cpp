@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "checked_int.hpp"
 #include "error.hpp"
 #include "model.hpp"
 #include "rk/local_shapes.hpp"
@@ -142,6 +143,9 @@ void build_constraints(Model& md, const Subdomain& sub, const Scene& scene) {
     md.ebc_particles.push_back(std::int32_t(I));
     md.ebc_offsets.push_back(std::int32_t(md.ebc_cols.size()));
   }
+  // the offsets grow with I: the last fits in 32 bits only if every one does
+  checked_int(std::int64_t(md.constraint_coef.size()), "rank " + std::to_string(md.rank) + ": the constraint directions");
+  checked_int(std::int64_t(md.ebc_cols.size()), "rank " + std::to_string(md.rank) + ": the constrained particles' rows (entries)");
 }
 
 }  // namespace rk

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "boundary/constraints.hpp"
+#include "checked_int.hpp"
 #include "error.hpp"
 #include "rk/kinematics.hpp"
 
@@ -117,6 +118,7 @@ EssentialBcs::EssentialBcs(const Model& md, const Scene& scene, const Comm& comm
     for (const auto& [p, N] : list) fix_particle_.push_back(p), fix_N_.push_back(N);
     fix_offsets_.push_back(std::int32_t(fix_N_.size()));
   }
+  checked_int(std::int64_t(fix_N_.size()), "rank " + std::to_string(md.rank) + ": the constraint rows' entries on local particles");
   rho_.resize(std::size_t(rows_));
   lambda_.resize(std::size_t(rows_));
   w_.resize(3 * recs.size());

@@ -110,7 +110,8 @@ DieContact::Row DieContact::row(const Model& md, std::size_t s) const {
     return {&md.material_cols[std::size_t(k0)], &md.material_N[std::size_t(k0)], md.material_offsets[I + 1] - k0};
   }
   const std::size_t g = s - particles_.size();
-  return {&md.nbr[std::size_t(md.nbr_offsets[g])], &md.N[std::size_t(md.nbr_offsets[g])], md.nbr_offsets[g + 1] - md.nbr_offsets[g]};
+  return {&md.nbr[std::size_t(md.nbr_offsets[g])], &md.N[std::size_t(md.nbr_offsets[g])],
+          std::int32_t(md.nbr_offsets[g + 1] - md.nbr_offsets[g])};  // one point's neighbours
 }
 
 void DieContact::material_point(const Model& md, const State& st, std::size_t s, double x[3]) const {
@@ -337,6 +338,17 @@ void DieContact::surface_loads(const FixedScale& scale, std::vector<Fixed>& out)
     Fixed* t = &out[4 * (triangle0_[std::size_t(ff.die)] + std::size_t(ff.triangle))];
     for (int i = 0; i < 3; ++i) t[1 + i] -= scale.fixed(ff.force[i]);
   }
+}
+
+void DieContact::count_terms(const Model& md, std::vector<Fixed>& terms) const {
+  if (empty()) return;
+  const auto obstacles = Fixed(dies_.size() + planes_.size());
+  for (std::size_t s = 0; s < particles_.size() + md.m; ++s) {
+    const Row r = row(md, s);
+    for (std::int32_t k = 0; k < r.size; ++k) terms[std::size_t(r.cols[k])] += obstacles;
+  }
+  if (shear_)
+    for (auto node : md.surface_face_nodes) ++terms[std::size_t(node)];
 }
 
 double DieContact::symmetry_depth() const { return planes_.size() > walls_ ? totals_.back().max_penetration : 0.0; }

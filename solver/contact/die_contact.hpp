@@ -64,8 +64,13 @@ class DieContact {
   // any depth inside): a die's index, -2 for a rigid wall or a symmetry plane, -1 for nothing.
   int touching(const double x[3], double t, double tolerance) const;
 
-  // The most force contributions a particle can take from the boundary faces' friction (for the
-  // fixed-point headroom): none without a shear factor; a node's faces, bounded by 64.
+  // Adds to terms[J] the most contact terms add_to can put into particle J's fixed-point force in a
+  // step from this rank (for the headroom, internal_force.hpp): one per obstacle (die, rigid wall,
+  // symmetry plane) for every slave whose row holds J, one for every face with friction holding J
+  // (a face meets one die at a time). Set-up only.
+  void count_terms(const Model& md, std::vector<Fixed>& terms) const;
+  // The contact terms a particle usually takes from the boundary faces' friction (for the scale's
+  // resolution, the fixed-point headroom): none without a shear factor; a node's faces, 64.
   int face_terms() const { return shear_ ? 64 : 0; }
 
   // One entry per die, one per rigid wall, then one for the symmetry planes (when the scene has any).

@@ -40,6 +40,10 @@ HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::str
   for (std::size_t k = 0; k < columns.size(); ++k) std::fprintf(file_, "%s%s", k ? "," : "", columns[k].c_str());
   std::fprintf(file_, "\n");
   for (const auto& line : keep) std::fprintf(file_, "%s\n", line.c_str());
+  if (std::fflush(file_) != 0 || std::ferror(file_)) {
+    std::fclose(file_);
+    throw Error(path + ": write failed (disk full?)");
+  }
 }
 
 HistoryWriter::~HistoryWriter() {

@@ -10,9 +10,11 @@
 
 namespace rk {
 
-RunSummary write_run_report(const std::string& case_dir, const Scene& scene, const Model& md, const State& st,
-                            const RunClock& clock, const DieContact& dies, const EssentialBcs& ebc,
-                            const PhaseTimer& timer, const RunCounts& counts, const Comm& comm) {
+namespace {
+
+// Collective; the summary is complete on rank 0.
+RunSummary summarize(const Scene& scene, const Model& md, const State& st, const RunClock& clock, const DieContact& dies,
+                     const EssentialBcs& ebc, const PhaseTimer& timer, const RunCounts& counts, const Comm& comm) {
   const double wall = comm.wtime() - counts.wall0;
   double owned = 0;
   for (std::size_t I = 0; I < md.n; ++I) owned += md.owned[I];
@@ -119,7 +121,17 @@ RunSummary write_run_report(const std::string& case_dir, const Scene& scene, con
   s.peak_memory_mb_max_rank = mem_max;
   s.peak_bytes_per_point = mem_sum[0] * bytes_per_mb_point;
   s.resident_bytes_per_point = mem_sum[1] * bytes_per_mb_point;
-  write_run_summary(case_dir + "/solve.json", s);
+  return s;
+}
+
+}  // namespace
+
+RunSummary write_run_report(const std::string& case_dir, const Scene& scene, const Model& md, const State& st,
+                            const RunClock& clock, const DieContact& dies, const EssentialBcs& ebc,
+                            const PhaseTimer& timer, const RunCounts& counts, const Comm& comm) {
+  const RunSummary s = summarize(scene, md, st, clock, dies, ebc, timer, counts, comm);
+  // rank 0 writes; a failed write stops every rank with its message
+  collectively(comm, [&] { return comm.rank() == 0 ? (write_run_summary(case_dir + "/solve.json", s), 0) : 0; });
   return s;
 }
 

@@ -1,5 +1,6 @@
 #include "parallel/comm.hpp"
 
+#include <algorithm>
 #include <vector>
 
 #include "error.hpp"
@@ -15,14 +16,26 @@ void Comm::max(double* v, int n) const { MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_D
 void Comm::sum(double* v, int n) const { MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD); }
 void Comm::sum(std::int64_t* v, int n) const { MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD); }
 void Comm::min(double* v, int n) const { MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD); }
-std::vector<double> Comm::gather_all(const std::vector<double>& mine) const {
-  int count = int(mine.size());
-  std::vector<int> counts(size_), offsets(size_ + 1, 0);
-  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+std::vector<double> Comm::gather_all(const std::vector<double>& mine, std::int64_t max_count) const {
+  // the counts and offsets in 64 bits: their sum over many ranks passes what an MPI int count holds
+  std::int64_t count = std::int64_t(mine.size());
+  std::vector<std::int64_t> counts(size_), offsets(size_ + 1, 0);
+  MPI_Allgather(&count, 1, MPI_INT64_T, counts.data(), 1, MPI_INT64_T, MPI_COMM_WORLD);
   for (int r = 0; r < size_; ++r) offsets[r + 1] = offsets[r] + counts[r];
-  std::vector<double> all(offsets[size_]);
-  MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE,
-                 MPI_COMM_WORLD);
+  std::vector<double> all(std::size_t(offsets[size_]));
+  if (offsets[size_] <= max_count) {  // one call: every count and offset fits an int
+    std::vector<int> n(size_), at(size_);
+    for (int r = 0; r < size_; ++r) n[r] = int(counts[r]), at[r] = int(offsets[r]);
+    MPI_Allgatherv(mine.data(), n[rank_], MPI_DOUBLE, all.data(), n.data(), at.data(), MPI_DOUBLE, MPI_COMM_WORLD);
+    return all;
+  }
+  // more than an int counts: each rank's share broadcast from it in pieces of at most max_count
+  std::copy(mine.begin(), mine.end(), all.begin() + offsets[rank_]);
+  for (int r = 0; r < size_; ++r)
+    for (std::int64_t done = 0; done < counts[r]; done += max_count) {
+      const int piece = int(std::min(max_count, counts[r] - done));
+      MPI_Bcast(all.data() + offsets[r] + done, piece, MPI_DOUBLE, r, MPI_COMM_WORLD);
+    }
   return all;
 }
 

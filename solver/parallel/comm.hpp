@@ -4,6 +4,7 @@
 #pragma once
 #include <mpi.h>
 
+#include <climits>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -21,8 +22,9 @@ class Comm {
   void sum(double* values, int count) const;
   void sum(std::int64_t* values, int count) const;  // exact: integers (fixed-point sums)
   void min(double* values, int count) const;
-  // Every rank's `mine`, concatenated in rank order, on every rank (set-up only).
-  std::vector<double> gather_all(const std::vector<double>& mine) const;
+  // Every rank's `mine`, concatenated in rank order, on every rank (set-up only). Totals past
+  // max_count values (an MPI int count) travel in pieces of at most max_count.
+  std::vector<double> gather_all(const std::vector<double>& mine, std::int64_t max_count = INT_MAX) const;
   // Every rank calls it. If any rank is not ok, every rank throws rk::Error with the message of the
   // lowest failing rank: one clear message, no hang, no rank left waiting.
   void check(bool ok, const std::string& message) const;

@@ -16,6 +16,20 @@ int force_headroom(const Model& md, int per_column, int extra, const Comm& comm)
   return headroom_bits(std::int64_t(most) + extra);
 }
 
+ForceTerms force_terms(const Model& md, const DieContact& dies, const Comm& comm) {
+  std::vector<Fixed> internal(md.n, 0), contact(md.n, 0);
+  for (auto k = md.nbr_offsets.front(); k < md.nbr_offsets.back(); ++k) ++internal[std::size_t(md.nbr[k])];
+  dies.count_terms(md, contact);
+  OverlapExchange exchange(md, 1);  // the shared copies' counts summed: every rank's terms
+  exchange.sum(internal);
+  exchange.sum(contact);
+  double most[2] = {0, 0};
+  for (std::size_t I = 0; I < md.n; ++I)
+    most[0] = std::max(most[0], double(internal[I])), most[1] = std::max(most[1], double(contact[I]));
+  comm.max(most, 2);
+  return {std::int64_t(most[0]), std::int64_t(most[1])};
+}
+
 void clear_internal_force(State& st) { std::fill(st.partial.begin(), st.partial.end(), Fixed(0)); }
 
 void add_internal_force(const Model& md, State& st, const FixedScale& scale, std::span<const std::int32_t> points) {

@@ -5,6 +5,7 @@
 #pragma once
 #include <span>
 
+#include "contact/die_contact.hpp"
 #include "model.hpp"
 #include "parallel/comm.hpp"
 #include "parallel/fixed_point.hpp"
@@ -14,10 +15,12 @@ namespace rk {
 
 // The fixed-point headroom (parallel/fixed_point.hpp) of sums over this model's points and neighbours: the
 // most contributions any particle receives from the points of ALL ranks, `per_column` from each of
-// its columns (1 + the dies: a point's contact force is spread over its columns too), plus `extra`
-// (the particle's own die contacts), so it does not depend on the partition. Collective; set-up
-// only (allocates).
+// its columns, plus `extra`, so it does not depend on the partition. Collective; set-up only (allocates).
 int force_headroom(const Model& md, int per_column, int extra, const Comm& comm);
+// Every term summed into a particle's force (st.partial), the most over the particles of ALL ranks:
+// one from each point whose row holds it (the internal force), and the contact terms
+// (DieContact::count_terms), for step_headroom. Collective; set-up only (allocates).
+ForceTerms force_terms(const Model& md, const DieContact& dies, const Comm& comm);
 
 void clear_internal_force(State& st);
 void add_internal_force(const Model& md, State& st, const FixedScale& scale, std::span<const std::int32_t> points);

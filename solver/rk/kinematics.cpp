@@ -35,7 +35,7 @@ void compute_deformation_gradient(const Model& md, State& st) {
 namespace {
 
 // x += sum_k N[k] (d_J - d_J^ref) over the row cols[k0 .. k1) (d^ref = 0 before the first update)
-void add_row(const State& st, const std::int32_t* cols, const double* N, std::int32_t k0, std::int32_t k1, double x[3]) {
+void add_row(const State& st, const std::int32_t* cols, const double* N, std::int64_t k0, std::int64_t k1, double x[3]) {
   const bool updated = !st.u_ref.empty();
   for (auto k = k0; k < k1; ++k) {
     const std::size_t J = 3 * std::size_t(cols[k]);

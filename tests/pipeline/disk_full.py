@@ -3,6 +3,9 @@ good checkpoint, and the run restarts from it once there is room.
 (1) history.csv on /dev/full (every write fails with ENOSPC); (2) the checkpoint folder on a
 300 KiB tmpfs that holds one set of checkpoints but not the next: the run stops, the first set
 survives complete, and the case, copied to a disk with room, restarts from it to the end.
+Every other file the programs write fails the same way, one error naming it: history.csv that
+cannot be made (3 ranks; rank 0 writes it), a restart whose history has other columns, solve.json,
+prep.json, rkpost's .pvd, a frame's .vtu that cannot take its name, and report.md.
 The tests run as root (the pipeline tests' MPI settings, tests/pipeline/rkcase.py), here and in CI,
 so the tmpfs mounts: a mount that fails is a failure of this test, not a reason to skip half of it."""
 import os
@@ -19,6 +22,51 @@ tools = rkcase.tools_from_argv()
 prep = tools.case("full_prep")
 tools.prep(prep, 2, sets=["discretization.spacing=1.5e-3"])
 sets = ["time.end=8e-6", "time.output_interval=0.5e-6", "output.checkpoint_steps=20"]
+
+
+def stops(args, expect, what):
+    """args must stop within 60 s (no rank left waiting), non-zero, with one error holding `expect`."""
+    t0 = time.time()
+    p = subprocess.run(["timeout", "60"] + [str(a) for a in args], capture_output=True, text=True, env=tools.env)
+    errors = [line for line in p.stderr.splitlines() if "error:" in line]
+    rkcase.check(p.returncode not in (0, 124) and len(errors) == 1 and expect in errors[0],
+                 f"{what}: exit {p.returncode} in {time.time() - t0:.1f} s, {errors or p.stderr.strip()[-300:]}")
+
+
+def solve_args(case, ranks, more=()):
+    return ["mpirun", "-np", ranks, tools.bin / "rksolve", case, "--quiet"] + sum((["--set", s] for s in sets), []) + list(more)
+
+
+prep3 = tools.case("full_prep3")
+tools.prep(prep3, 3, sets=["discretization.spacing=1.5e-3"])
+case = tools.case("full_history_dir")
+shutil.copytree(prep3, case)
+(case / "history.csv").mkdir()  # rank 0 cannot create it (the tests run as root: a mode would not stop it)
+stops(solve_args(case, 3), "history.csv: cannot write the history file", "history.csv cannot be made, 3 ranks")
+
+case = tools.case("full_summary")
+shutil.copytree(prep, case)
+os.symlink("/dev/full", case / "solve.json")
+stops(solve_args(case, 2), "solve.json: cannot write (No space left on device)", "solve.json on a full disk")
+
+case = tools.case("full_prep_json")
+case.mkdir()
+os.symlink(tools.work / "no_such_folder" / "prep.json", case / "prep.json")  # dangling: no case there yet
+stops([tools.bin / "rkprep", rkcase.TAYLOR, "--ranks", 1, "--out", case, "--quiet", "--set", "discretization.spacing=2e-3"],
+      "prep.json: cannot write (No such file or directory)", "prep.json that cannot be made")
+
+case = tools.case("full_pvd")
+shutil.copytree(prep, case)
+(case / "vtk").mkdir()
+os.symlink("/dev/full", case / "vtk" / "case.pvd")
+stops([tools.bin / "rkpost", case, "--quiet", "--no-pictures"], "case.pvd: cannot write (No space left on device)",
+      "rkpost's .pvd on a full disk")
+os.remove(case / "vtk" / "case.pvd")
+os.remove(case / "vtk" / "frame_00000.vtu")
+(case / "vtk" / "frame_00000.vtu").mkdir()  # the written frame cannot be renamed over it
+stops([tools.bin / "rkpost", case, "--quiet", "--no-pictures"], "frame_00000.vtu: cannot write (renaming",
+      "a frame's .vtu that cannot take its name")
+rkcase.check(not list((case / "vtk").glob("*.tmp")), "no partial .vtu left behind")
 
 case = tools.case("full_history")
 shutil.copytree(prep, case)
@@ -54,6 +102,19 @@ whole = tools.case("full_whole")
 shutil.copytree(prep, whole)
 tools.solve(whole, 2, sets=sets)
 tools.post(whole)
+
+# a restart into a history.csv of other columns (as another scene's run writes it): rank 0 finds
+# it, and every rank stops with its message
+columns = tools.case("full_columns")
+shutil.copytree(whole, columns)
+rows = (columns / "history.csv").read_text().splitlines()
+(columns / "history.csv").write_text("\n".join([rows[0] + ",floor.force"] + [r + ",0" for r in rows[1:]]) + "\n")
+stops(solve_args(columns, 2, ["--restart"]), "history.csv: written with other columns",
+      "a restart whose history has other columns")
+os.remove(columns / "report.md")
+os.symlink("/dev/full", columns / "report.md")
+stops([tools.bin / "rkpost", columns, "--quiet", "--no-pictures"], "report.md: cannot write (No space left on device)",
+      "report.md on a full disk")
 a = meshio.read(sorted((whole / "vtk").glob("frame_*.vtu"))[-1])
 b = meshio.read(sorted((rescued / "vtk").glob("frame_*.vtu"))[-1])
 rkcase.check(np.array_equal(a.points, b.points) and np.array_equal(a.point_data["velocity"], b.point_data["velocity"]),
