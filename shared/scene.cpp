@@ -850,7 +850,7 @@ double DieMotion::fastest() const {
 
 double DieMotion::reach(double t_end) const {
   if (blows()) return std::numeric_limits<double>::infinity();
-  t_end = std::max(t_end - start, 0.0);
+  t_end -= start;
   if (hydraulic()) return ram.stroke > 0 ? std::min(ram.stroke, speed * t_end) : speed * t_end;
   if (cranked()) return stroke(std::min(t_end, crank.bottom_dead_centre()));  // rising to bottom dead centre
   double s = stroke(t_end);  // piecewise linear: the farthest at a corner or at the end
@@ -860,13 +860,12 @@ double DieMotion::reach(double t_end) const {
 }
 
 double DieMotion::stroke(double t) const {
-  t = std::max(t - start, 0.0);
+  t -= start;
   if (cranked()) return crank.position(crank.angle(t)) - crank.position(crank.start_angle);
   return curve.empty() ? speed * t : curve.at(t);
 }
 
 double DieMotion::rate(double t) const {
-  if (t < start) return 0.0;
   t -= start;
   if (cranked()) {  // ds/dtheta dtheta/dt
     const double theta = crank.angle(t), lambda = crank.radius / crank.rod, s = std::sin(theta);
