@@ -8,11 +8,13 @@
 #include <filesystem>
 #include <fstream>
 #include <numeric>
+#include <optional>
 #include <sstream>
 
 #include "cli.hpp"
 #include "die_fill_regions.hpp"
 #include "flow_lines.hpp"
+#include "folds.hpp"
 #include "h5file.hpp"
 #include "pictures.hpp"
 #include "chain.hpp"
@@ -285,9 +287,12 @@ int run(int argc, char** argv) {
   std::vector<rk::PvdEntry> index;
   // the flow lines' particles, chosen on the positions at t = 0 (post/flow_lines.hpp)
   std::vector<rk::FlowLineSet> flow;
-  if (!scene.output.flow_lines.empty()) {
+  std::optional<rk::FoldFinder> folding;  // the part's free surface, to find folds at each frame
+  std::vector<rk::Fold> folds;
+  if (!scene.output.flow_lines.empty() || (solved && field_list == "all")) {
     Frame start = prepared_frame(case_dir, ranks, {}, scene);
     sort_by_global_id(start, {}, case_dir + " at t = 0");
+    if (solved && field_list == "all") folding.emplace(cells, start.x, scene.discretization.spacing, scene.symmetry_planes);
     for (const auto& spec : scene.output.flow_lines) {
       flow.push_back(rk::select_flow_lines(spec, start.x, scene.discretization.spacing));
       if (flow.back().particles.empty())
@@ -316,6 +321,7 @@ int run(int argc, char** argv) {
     data.push_back({"global_id", 1, {}, fr.gid});
     for (std::size_t k = 0; k < fields.size(); ++k) data.push_back({fields[k].name, fields[k].components, fr.values[k], {}});
     data.push_back({"rank", 1, {}, fr.rank});
+    if (folding) data.push_back({"fold", 1, {}, folding->find(fr.x, fr.time, folds)});
     rk::write_vtu(case_dir + "/vtk/" + name, fr.x, data, cells, {{"rank", 1, {}, cell_rank}}, !uncompressed);
     index.push_back({fr.time, 0, name, "part"});
     std::size_t first_triangle = 0;  // die k's first in the frame's die datasets
@@ -362,7 +368,9 @@ int run(int argc, char** argv) {
     return 0;
   }
   if (!no_pictures) rk::make_pictures(case_dir, quiet);  // before the report, which lists them
-  rk::write_report(case_dir, fill);
+  std::vector<std::string> fold_lines;
+  for (const rk::Fold& f : folds) fold_lines.push_back(rk::describe_fold(f));
+  rk::write_report(case_dir, fill, folding ? &fold_lines : nullptr);
   if (!fs::exists(case_dir + "/solve.json"))  // a run a health check stopped: its frames are there to look at
     std::fprintf(stderr, "rkpost: warning: %s has no solve.json: the run did not finish (report.md says so)\n",
                  case_dir.c_str());

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "error.hpp"
+#include "folds.hpp"
 #include "history_columns.hpp"
 #include "phase_names.hpp"
 #include "run_summary.hpp"
@@ -36,7 +37,8 @@ std::string num(double x, int digits = 4) {
 std::string num(const nlohmann::json& j, int digits = 4) { return j.is_number() ? num(j.get<double>(), digits) : "-"; }
 }  // namespace
 
-void write_report(const std::string& case_dir, const std::vector<std::string>& fill_lines) {
+void write_report(const std::string& case_dir, const std::vector<std::string>& fill_lines,
+                  const std::vector<std::string>* folds) {
   namespace fs = std::filesystem;
   std::ifstream prep_file(case_dir + "/prep.json"), hist(case_dir + "/history.csv");
   const auto prep = nlohmann::json::parse(prep_file);
@@ -146,6 +148,14 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
     for (const auto& [die, f] : fill) r << "| " << die << " | " << num(100 * f, 3) << " % |\n";
     if (!fill_lines.empty()) r << "\nAt the last frame:\n\n";
     for (const auto& line : fill_lines) r << "- " << line << "\n";
+  }
+  if (folds) {
+    r << "\n## Folds and laps\n\nWhere two parts of the free surface that were more than " << num(FoldFinder::kApart)
+      << " spacings apart at t = 0 came within half a spacing, facing each other (the particle field `fold` in "
+         "ParaView shows them at every frame; the part's self-contact is not modelled, so they may pass through each "
+         "other after).\n\n";
+    if (folds->empty()) r << "None found.\n";
+    for (const auto& line : *folds) r << "- **" << line << "**\n";
   }
   std::erase_if(presses, [](const Press& p) { return p.travel == 0; });  // a die at rest is no press
   if (!presses.empty()) {

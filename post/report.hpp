@@ -7,6 +7,8 @@
 namespace rk {
 
 // `fill`: a line per die on its fill at the last frame (post/die_fill_regions.hpp), or none
-void write_report(const std::string& case_dir, const std::vector<std::string>& fill = {});
+// fill: the dies' unfilled regions at the last frame; folds: the folds found (null: not looked for)
+void write_report(const std::string& case_dir, const std::vector<std::string>& fill = {},
+                  const std::vector<std::string>* folds = nullptr);
 
 }  // namespace rk

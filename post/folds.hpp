@@ -1,0 +1,50 @@
+// Folds and laps: where two parts of the free surface that were apart at t = 0 have come together
+// (material flowing around and onto itself, the forging defect). Found by rkpost at each frame from
+// the particles' positions: a surface particle is flagged when a surface particle facing it (their
+// outward normals more than 120 degrees apart) is within half a spacing of it now and was more than
+// kApart spacings from it at t = 0 (the two surfaces closed in on each other; neighbours on one
+// surface face the same way). The surface is the integration cells' faces that no other cell
+// shares, less those on a symmetry plane. Flagged particles within two spacings of each other are
+// one fold; a fold is reported once, at the first frame it shows (kSame spacings from any fold
+// found before), with where it is and how many particles it holds.
+// The part's self-contact is not modelled: after they meet, the two surfaces can pass through each
+// other; the first frame that shows them together is the fold's time.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene.hpp"
+#include "vtu_writer.hpp"
+
+namespace rk {
+
+struct Fold {
+  double time = 0;                 // s, the first frame it shows in
+  std::array<double, 3> at{};      // m, the centroid of its particles then
+  std::size_t particles = 0;
+};
+
+class FoldFinder {
+ public:
+  static constexpr double kApart = 1.5;  // spacings apart at t = 0, at least
+  static constexpr double kSame = 3;     // spacings from a fold found at an earlier frame: the same fold
+  // cells: the part's integration cells on the particles (global ids); X0: the particles at t = 0
+  FoldFinder(const VtuCells& cells, const std::vector<double>& X0, double spacing,
+             const std::vector<SymmetryPlane>& planes);
+  // 1 for each particle on a fold at the current positions x, else 0; new folds appended to `found`
+  std::vector<std::int64_t> find(const std::vector<double>& x, double time, std::vector<Fold>& found) const;
+  std::size_t surface_particles() const { return nodes_.size(); }
+
+ private:
+  std::vector<double> X0_;
+  double h_;
+  std::vector<std::array<std::int64_t, 5>> faces_;  // corners (the 4th -1 for a triangle), then a node of its cell off the face
+  std::vector<std::int64_t> nodes_;                 // the surface particles
+};
+
+// A line for report.md: where and when the fold showed, in mm and s.
+std::string describe_fold(const Fold& fold);
+
+}  // namespace rk
