@@ -64,8 +64,9 @@ FoldFinder::FoldFinder(const VtuCells& cells, const std::vector<double>& X0, dou
     if (surface[I]) nodes_.push_back(std::int64_t(I));
 }
 
-std::vector<std::int64_t> FoldFinder::find(const std::vector<double>& x, double time, std::vector<Fold>& found) const {
+std::vector<std::int64_t> FoldFinder::find(const std::vector<double>& x, double time, std::vector<Fold>& found) {
   const std::size_t n = x.size() / 3;
+  fold_of_.resize(n, -1);
   std::vector<std::int64_t> flag(n, 0);
   // outward normals at the surface particles: their faces' area normals, each turned away from its cell
   std::vector<double> normal(3 * n, 0.0);
@@ -125,20 +126,26 @@ std::vector<std::int64_t> FoldFinder::find(const std::vector<double>& x, double 
   for (std::size_t a = 0; a < on.size(); ++a)
     for (std::size_t b = a + 1; b < on.size(); ++b)
       if (distance2(&x[3 * std::size_t(on[a])], &x[3 * std::size_t(on[b])]) < 4 * h_ * h_) root[find_root(b)] = find_root(a);
-  std::map<std::size_t, Fold> clusters;
-  for (std::size_t a = 0; a < on.size(); ++a) {
-    Fold& f = clusters[find_root(a)];
-    f.time = time;
-    ++f.particles;
-    for (int i = 0; i < 3; ++i) f.at[i] += x[3 * std::size_t(on[a]) + i];
-  }
-  const std::size_t before = found.size();
-  for (auto& [r, f] : clusters) {
-    for (int i = 0; i < 3; ++i) f.at[i] /= double(f.particles);
-    bool known = false;
-    for (std::size_t k = 0; k < before; ++k)
-      known = known || distance2(found[k].at.data(), f.at.data()) < same2;
-    if (!known) found.push_back(f);
+  std::map<std::size_t, std::vector<std::int64_t>> clusters;  // by root: the members
+  for (std::size_t a = 0; a < on.size(); ++a) clusters[find_root(a)].push_back(on[a]);
+  std::vector<std::int64_t> earlier;  // the particles of the folds found at earlier frames
+  for (std::int64_t I : nodes_)
+    if (fold_of_[std::size_t(I)] >= 0) earlier.push_back(I);
+  for (const auto& [r, members] : clusters) {
+    int id = -1;  // a fold found before: one of its particles is in the cluster, or near it
+    for (std::int64_t I : members) id = std::max(id, fold_of_[std::size_t(I)]);
+    for (std::size_t k = 0; k < earlier.size() && id < 0; ++k)
+      for (std::int64_t I : members)
+        if (distance2(&x[3 * std::size_t(I)], &x[3 * std::size_t(earlier[k])]) < same2) id = fold_of_[std::size_t(earlier[k])];
+    if (id < 0) {
+      Fold f;
+      f.time = time, f.particles = members.size();
+      for (std::int64_t I : members)
+        for (int i = 0; i < 3; ++i) f.at[std::size_t(i)] += x[3 * std::size_t(I) + i] / double(members.size());
+      id = int(found.size());
+      found.push_back(f);
+    }
+    for (std::int64_t I : members) fold_of_[std::size_t(I)] = id;
   }
   return flag;
 }

@@ -5,8 +5,9 @@
 // kApart spacings from it at t = 0 (the two surfaces closed in on each other; neighbours on one
 // surface face the same way). The surface is the integration cells' faces that no other cell
 // shares, less those on a symmetry plane. Flagged particles within two spacings of each other are
-// one fold; a fold is reported once, at the first frame it shows (kSame spacings from any fold
-// found before), with where it is and how many particles it holds.
+// one fold; a fold is reported once, at the first frame it shows, with where it is and how many
+// particles it holds: a cluster holding a particle of a fold found at an earlier frame, or within
+// kSame spacings of one, is that fold growing.
 // The part's self-contact is not modelled: after they meet, the two surfaces can pass through each
 // other; the first frame that shows them together is the fold's time.
 #pragma once
@@ -29,12 +30,13 @@ struct Fold {
 class FoldFinder {
  public:
   static constexpr double kApart = 1.5;  // spacings apart at t = 0, at least
-  static constexpr double kSame = 3;     // spacings from a fold found at an earlier frame: the same fold
+  static constexpr double kSame = 3;     // spacings from a fold's particles: the same fold
   // cells: the part's integration cells on the particles (global ids); X0: the particles at t = 0
   FoldFinder(const VtuCells& cells, const std::vector<double>& X0, double spacing,
              const std::vector<SymmetryPlane>& planes);
   // 1 for each particle on a fold at the current positions x, else 0; new folds appended to `found`
-  std::vector<std::int64_t> find(const std::vector<double>& x, double time, std::vector<Fold>& found) const;
+  // (the frames in order of time)
+  std::vector<std::int64_t> find(const std::vector<double>& x, double time, std::vector<Fold>& found);
   std::size_t surface_particles() const { return nodes_.size(); }
 
  private:
@@ -42,6 +44,7 @@ class FoldFinder {
   double h_;
   std::vector<std::array<std::int64_t, 5>> faces_;  // corners (the 4th -1 for a triangle), then a node of its cell off the face
   std::vector<std::int64_t> nodes_;                 // the surface particles
+  std::vector<int> fold_of_;                        // per particle: the fold it was found on (-1: none yet)
 };
 
 // A line for report.md: where and when the fold showed, in mm and s.

@@ -44,9 +44,10 @@ rows = list(csv.DictReader(open(cases[1] / "history.csv")))
 rkcase.check(len(found) == 1, f"one lap reported: {section.strip()}")
 x, y, z, t, n = found[0]
 stroke = float(min(rows, key=lambda r: abs(float(r["time"]) - t))["die.stroke"])
-# the finder flags the faces half a spacing before they meet: at 1.5 mm of the die's travel; measured
-# 2026-12-02: the first frame showing it at 1.5 mm (frames every 0.1 mm of travel)
-rkcase.check(GAP - 0.5 * H - 0.1e-3 <= stroke <= GAP - 0.5 * H + 0.15e-3 and 3 <= x <= 10 and 1 <= z <= 3,
+# the finder flags the faces half a spacing before they meet: at 1.5 mm of the die's travel. Measured
+# 2026-12-02: first at the frame of 1.6 mm (the frames are 0.1 mm of travel apart; the arms themselves
+# are squeezed a little), at the slot's open end; the bound is that frame or the one before or after
+rkcase.check(GAP - 0.5 * H - 0.05e-3 <= stroke <= GAP - 0.5 * H + 0.25e-3 and 3 <= x <= 10 and 1 <= z <= 3,
              f"the lap in the slot at ({x}, {y}, {z}) mm, first at t = {t} s with the die at {1e3 * stroke:.3f} mm "
              f"({n} particles)")
 frames = flags(cases[1])
