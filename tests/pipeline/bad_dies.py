@@ -72,7 +72,7 @@ matched = [any(float(r["time"]) <= float(t) and f"{1e3 * float(r['die.stroke']):
 rkcase.check(len(lines) >= 2 and all(matched), f"the progress line's stroke and force are the history's: {lines}")
 # Suspicious but legal: mass scaling so strong that inertia carries the load. The same 0.2 ms at
 # time.mass_scaling_dt = 2e-6 s (594x the density, 10x the scene's) keeps the kinetic energy at
-# 22.9 % of the internal energy over the run's second half (0.2 % at the scene's 2e-7 s, measured
+# 22.9 % of the internal energy over the run's second half (0.25 % at the scene's 2e-7 s, measured
 # 2026-12-02), and the die force 6 % under the scene's: a warning naming the key, in the log,
 # solve.json and report.md.
 heavy = tools.case("die_pressing_mass_scaled")
