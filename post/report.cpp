@@ -94,7 +94,8 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
     r << "| simulated time | " << num(solve.time) << " s in " << solve.steps << " steps |\n";
     r << "| wall time | " << num(solve.wall_s, 3) << " s (setup " << num(solve.setup_s, 3) << " s, prep "
       << num(prep["wall_s"], 3) << " s) |\n";
-    r << "| cost | " << num(solve.ns_per_point_update, 3) << " ns per integration-point update |\n";
+    r << "| cost | " << num(solve.ns_per_point_update, 3) << " ns per integration-point update, "
+      << num(solve.ns_per_particle_step, 3) << " ns per particle step |\n";
     // the run's largest energy error decides the verdict (an error that peaked and fell back is not good)
     const double err = solve.max_energy_error;
     r << "| energy balance | largest error " << num(100 * err, 3) << " % of the energy scale (at the end "

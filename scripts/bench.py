@@ -106,6 +106,7 @@ def paper_case(a, machine, sets=(), case=None):
     return {"particles": p["particles"], "points": s["integration_points"], "steps": s["steps"],
             "prep_s": p["wall_s"], "solve_s": s["wall_s"], "setup_s": s["setup_s"], "total_s": total,
             "setup_fraction": (p["wall_s"] + s["setup_s"]) / total, "ns_per_point_update": s["ns_per_point_update"],
+            "ns_per_particle_step": s["ns_per_particle_step"],
             "neighbours_per_point": s["neighbours_per_point"], "plastic_fraction": s["plastic_fraction"],
             "bytes_per_update": cost["bytes"], "flops_per_update": cost["flops"], **limit,
             "fraction_of_limit": limit["limit_ns"] / s["ns_per_point_update"],
@@ -173,12 +174,14 @@ def report(res, a):
     if "paper" in res:
         md += ["## Taylor bar at the 2007 paper's resolution, 80 us, 1 rank", "",
                "| setting | particles | points | steps | prep (s) | solve (s) | total (s) | setup share | ns/point update | "
+               "ns/particle step | "
                "neighbours/point | plastic share | bytes, flops per update | machine limit (ns) | fraction of the limit | "
                "r_f, L_f (mm) | error |",
-               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for s in res["paper"]:
             md += [f"| {s['setting']} | {s['particles']} | {s['points']} | {s['steps']} | {s['prep_s']:.2f} | {s['solve_s']:.1f} | "
                    f"{s['total_s']:.2f} | {100 * s['setup_fraction']:.1f} % | {s['ns_per_point_update']:.0f} | "
+                   f"{s['ns_per_particle_step']:.0f} | "
                    f"{s['neighbours_per_point']:.1f} | {100 * s['plastic_fraction']:.0f} % | "
                    f"{s['bytes_per_update']:.0f} B, {s['flops_per_update']:.0f} | {s['limit_ns']:.0f} (memory "
                    f"{s['memory_ns']:.0f} at {s['bandwidth_gb_per_s']:.0f} GB/s, compute {s['compute_ns']:.0f}; AVX-512 "

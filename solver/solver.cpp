@@ -635,6 +635,7 @@ void Simulation::finish() {
   counts.plastic_updates = plastic_updates_, counts.point_updates = point_updates_;
   counts.max_ebc_error = max_ebc_error_, counts.impact_pressure = pressure_bound_.impact;
   counts.frames = results_->frames();
+  counts.first_step = first_step_;
   counts.start_warnings = start_warnings_;
   if (presses_) {
     counts.presses = presses_->outcome(st_, scene_.dies);
@@ -642,7 +643,7 @@ void Simulation::finish() {
       if (presses_->stalled(st_, r)) counts.warnings.push_back(counts.presses[r]);
   }
   const RunSummary s = write_run_report(opt_.case_dir, scene_, md_, st_, clock_, *dies_, *ebc_, timer_, counts, comm_);
-  progress_->done(st_.step, s.wall_s, s.ns_per_point_update, clock_.last_error);
+  progress_->done(st_.step - first_step_, s.wall_s, s.ns_per_point_update, s.ns_per_particle_step, clock_.last_error);
 }
 
 }  // namespace

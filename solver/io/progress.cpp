@@ -57,11 +57,13 @@ void Progress::step(const State& st, double dt, double energy_error, const std::
   line_open_ = terminal_;
 }
 
-void Progress::done(std::int64_t steps, double wall_s, double ns_per_point_update, double energy_error) const {
+void Progress::done(std::int64_t steps, double wall_s, double ns_per_point_update, double ns_per_particle_step,
+                    double energy_error) const {
   if (!show_) return;
   if (line_open_) std::fprintf(out_, "\n");
-  std::fprintf(out_, "rksolve: done, %lld steps, %.2f s wall (%.0f ns per point update), energy error %.2e\n",
-              static_cast<long long>(steps), wall_s, ns_per_point_update, energy_error);
+  std::fprintf(out_, "rksolve: done, %lld steps, %.2f s wall (%.0f ns per point update, %.0f per particle step), "
+              "energy error %.2e\n", static_cast<long long>(steps), wall_s, ns_per_point_update, ns_per_particle_step,
+              energy_error);
 }
 
 }  // namespace rk

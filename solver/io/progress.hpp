@@ -23,7 +23,9 @@ class Progress {
   void banner(bool restart, double setup_s, double mass_scaling) const;
   // After a step, at wall time `now`: prints when the interval has passed.
   void step(const State& st, double dt, double energy_error, const std::vector<double>& history_row, double now);
-  void done(std::int64_t steps, double wall_s, double ns_per_point_update, double energy_error) const;
+  // steps: this run's (a restart's or a stage's own)
+  void done(std::int64_t steps, double wall_s, double ns_per_point_update, double ns_per_particle_step,
+            double energy_error) const;
 
  private:
   bool show_;

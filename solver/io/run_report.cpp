@@ -101,8 +101,11 @@ RunSummary summarize(const Scene& scene, const Model& md, const State& st, const
   s.particles = std::int64_t(particles);
   s.integration_points = std::int64_t(points);
   s.neighbours_per_point = neighbours / std::max(points, 1.0);
-  s.point_updates_per_s = loop_s > 0 ? points * double(st.step) / loop_s : 0.0;
-  s.ns_per_point_update = st.step > 0 ? 1e9 * loop_s * comm.size() / (points * double(st.step)) : 0.0;
+  // the steps this run took (a restart or a stage goes on from a checkpoint's step)
+  const double steps = double(st.step - counts.first_step);
+  s.point_updates_per_s = loop_s > 0 ? points * steps / loop_s : 0.0;
+  s.ns_per_point_update = steps > 0 ? 1e9 * loop_s * comm.size() / (points * steps) : 0.0;
+  s.ns_per_particle_step = steps > 0 ? 1e9 * loop_s * comm.size() / (particles * steps) : 0.0;
   s.plastic_fraction = plastic / std::max(updates, 1.0);
   s.energy_error = clock.last_error;
   s.max_energy_error = clock.max_error;

@@ -27,6 +27,7 @@ struct RunCounts {
   double max_ebc_error = 0;       // the essential BCs' largest violation seen (m)
   double impact_pressure = 0;     // rho0 c_L v_max (Pa)
   std::int64_t frames = 0;
+  std::int64_t first_step = 0;  // the step this run started from (0, or a checkpoint's)
   std::vector<std::string> presses;         // how each press-driven die ended (the same on every rank)
   std::vector<std::string> warnings;        // the presses that stalled short of their stroke
   std::vector<std::string> start_warnings;  // found (and printed) at the start

@@ -70,6 +70,14 @@ link = json.loads((second / "stage.json").read_text())
 rkcase.check(link["start"] == 0.2e-3 and link["continues"] == [0] and not link["dwell"], f"stage.json: {link}")
 rkcase.check(same_frames(single, second) and history(single)[-1] == history(second)[-1],
              "0.2 ms + 0.2 ms in two stages equals the 0.4 ms run bitwise (last frame, last history row)")
+# the stage's cost is its own: its loop time over its own steps (the chain's step count goes on)
+s1, s2 = (json.loads((c / "solve.json").read_text()) for c in (first, second))
+own = s2["steps"] - s1["steps"]
+loop = s2["ns_per_point_update"] * 1e-9 * s2["integration_points"] * own / s2["ranks"]
+rkcase.check(s2["steps"] == json.loads((single / "solve.json").read_text())["steps"] and 0 < own < s2["steps"]
+             and abs(loop / (s2["wall_s"] - s2["setup_s"]) - 1) < 1e-9
+             and abs(s2["ns_per_particle_step"] / s2["ns_per_point_update"] - s2["integration_points"] / s2["particles"]) < 1e-9,
+             f"the stage's cost per update and per particle step over its own {own} of the chain's {s2['steps']} steps")
 tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", halves, "--quiet", "--from", first, "--set", "time.end=0.1e-3",
            "--set", TIMES[0], "--set", "output.checkpoint_steps=200"])
 p = tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", halves, "--quiet", "--restart", "--set", "time.end=0.2e-3",

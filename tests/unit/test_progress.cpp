@@ -73,7 +73,7 @@ TEST(Progress, NoDieNoStrokeAndQuietPrintsNothing) {
   quiet.banner(false, 0.1, 1);
   st.t = 0.7;
   quiet.step(st, 1e-3, 0, {0}, 5.0);
-  quiet.done(10, 5.0, 100, 0);
+  quiet.done(10, 5.0, 100, 700, 0);
   EXPECT_EQ(written(f), text);
   std::fclose(f);
 }
