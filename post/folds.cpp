@@ -24,8 +24,12 @@ double distance2(const double* a, const double* b) {
 FoldFinder::FoldFinder(const VtuCells& cells, const std::vector<double>& X0, double spacing,
                        const std::vector<SymmetryPlane>& planes)
     : X0_(X0), h_(spacing) {
-  std::map<std::array<std::int64_t, 4>, int> seen;  // a face by its sorted corners: how many cells hold it
-  std::vector<std::array<std::int64_t, 5>> all;
+  // every cell's faces by their sorted corners: a face that no other cell shares is on the surface
+  struct CellFace {
+    std::array<std::int64_t, 4> key;   // the corners sorted (-1 first for a triangle)
+    std::array<std::int64_t, 5> face;  // the corners in order, then a corner of its cell off the face
+  };
+  std::vector<CellFace> all;
   for (std::size_t c = 0; c < cells.types.size(); ++c) {
     const std::int64_t* n = &cells.connectivity[std::size_t(c == 0 ? 0 : cells.offsets[c - 1])];
     const bool hex = cells.types[c] == kVtkHexahedron;
@@ -37,15 +41,14 @@ FoldFinder::FoldFinder(const VtuCells& cells, const std::vector<double>& X0, dou
         if (std::find(face.begin(), face.begin() + corners, n[k]) == face.begin() + corners) face[4] = n[k];
       std::array<std::int64_t, 4> key{face[0], face[1], face[2], face[3]};
       std::sort(key.begin(), key.end());
-      ++seen[key];
-      all.push_back(face);
+      all.push_back({key, face});
     }
   }
+  std::sort(all.begin(), all.end(), [](const CellFace& a, const CellFace& b) { return a.key < b.key; });
   std::vector<char> surface(X0.size() / 3, 0);
-  for (const auto& face : all) {
-    std::array<std::int64_t, 4> key{face[0], face[1], face[2], face[3]};
-    std::sort(key.begin(), key.end());
-    if (seen[key] != 1) continue;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    if ((k > 0 && all[k - 1].key == all[k].key) || (k + 1 < all.size() && all[k + 1].key == all[k].key)) continue;
+    const std::array<std::int64_t, 5>& face = all[k].face;
     bool mirrored = false;  // on a symmetry plane: the mirror's material lies across, not a free surface
     for (const SymmetryPlane& p : planes) {
       bool on = true;
@@ -73,12 +76,12 @@ std::vector<std::int64_t> FoldFinder::find(const std::vector<double>& x, double 
   for (const auto& face : faces_) {
     const int corners = face[3] < 0 ? 3 : 4;
     const double *a = &x[3 * std::size_t(face[0])], *b = &x[3 * std::size_t(face[1])], *c = &x[3 * std::size_t(face[2])];
-    const double* d = corners == 4 ? &x[3 * std::size_t(face[3])] : b;
-    double e1[3], e2[3], m[3], centre[3];  // the diagonals' cross product: twice the area normal of a quad
+    // the diagonals' cross product (c - a) x (d - b): twice the area normal of a quad, and of a
+    // triangle with d = a
+    const double* d = corners == 4 ? &x[3 * std::size_t(face[3])] : a;
+    double e1[3], e2[3], m[3], centre[3];
     for (int i = 0; i < 3; ++i)
       e1[i] = c[i] - a[i], e2[i] = d[i] - b[i], centre[i] = (a[i] + b[i] + c[i] + (corners == 4 ? d[i] : 0)) / corners;
-    if (corners == 3)
-      for (int i = 0; i < 3; ++i) e1[i] = b[i] - a[i], e2[i] = c[i] - a[i];
     m[0] = e1[1] * e2[2] - e1[2] * e2[1], m[1] = e1[2] * e2[0] - e1[0] * e2[2], m[2] = e1[0] * e2[1] - e1[1] * e2[0];
     const double* off = &x[3 * std::size_t(face[4])];
     const double side = (off[0] - centre[0]) * m[0] + (off[1] - centre[1]) * m[1] + (off[2] - centre[2]) * m[2];

@@ -37,7 +37,6 @@ class FoldFinder {
   // 1 for each particle on a fold at the current positions x, else 0; new folds appended to `found`
   // (the frames in order of time)
   std::vector<std::int64_t> find(const std::vector<double>& x, double time, std::vector<Fold>& found);
-  std::size_t surface_particles() const { return nodes_.size(); }
 
  private:
   std::vector<double> X0_;

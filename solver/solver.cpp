@@ -60,6 +60,7 @@ class Simulation {
   bool update_due() const;
   void reference_update();
   bool checkpoint_due(bool last) const;
+  bool checkpoint_clock() const;
   void checkpoint();
   [[noreturn]] void stop_on_interrupt();
   void deformation_gradient();
@@ -169,9 +170,9 @@ void Simulation::dwell() {
   for (;;) {
     timer_.start();
     const bool last = st_.t >= scene_.time.end * (1 - 1e-12);
-    double stop[2] = {g_interrupted != 0 ? 1.0 : 0.0, 0.0};  // a rank interrupted: every rank stops
-    comm_.max(stop, 2);
-    limits_.interrupted = stop[0] > 0;
+    limits_.checkpoint_clock = checkpoint_clock();  // the step's flags over the ranks, as time_step() does
+    limits_.interrupted = g_interrupted != 0;
+    limits_.reduce(comm_);
     if (checkpoint_due(last)) checkpoint();
     if (limits_.interrupted) stop_on_interrupt();
     if (history_due(last)) history(0.0, last);
@@ -257,9 +258,7 @@ void Simulation::time_step() {
   limits_.force_bound = bound;
   limits_.contact_bound = contact_bound_;
   limits_.unhealthy = !healthy_;
-  // rank 0's clock decides whether a wall-clock checkpoint is due (written at the next step's top)
-  limits_.checkpoint_clock = comm_.rank() == 0 && scene_.output.checkpoint_minutes > 0 &&
-                             comm_.wtime() - last_checkpoint_wall_ >= 60 * scene_.output.checkpoint_minutes;
+  limits_.checkpoint_clock = checkpoint_clock();
   limits_.strain_since_update = update_strain > 0 ? largest_strain_since_update(md_, st_) : 0.0;
   limits_.symmetry_depth = dies_->symmetry_depth() / health_->scales().h_min;
   limits_.pressure_ratio = stress_.pressure_ratio;
@@ -268,6 +267,12 @@ void Simulation::time_step() {
   limits_.reduce(comm_);
   clock_.max_pressure_ratio = std::max(clock_.max_pressure_ratio, limits_.pressure_ratio);
   timer_.stop(kTimeStep);
+}
+
+// Rank 0's clock decides whether a wall-clock checkpoint is due (written at the next step's top).
+bool Simulation::checkpoint_clock() const {
+  return comm_.rank() == 0 && scene_.output.checkpoint_minutes > 0 &&
+         comm_.wtime() - last_checkpoint_wall_ >= 60 * scene_.output.checkpoint_minutes;
 }
 
 void Simulation::check_health() const {

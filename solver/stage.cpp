@@ -1,5 +1,6 @@
 #include "stage.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "error.hpp"
@@ -31,14 +32,13 @@ bool same_faces(const std::vector<EssentialFace>& a, const std::vector<Essential
 // The boundaries that act on the part's displacement from the chain's start: they cannot change
 // between stages (a face held from t = 0 would pull the formed part back).
 void check_boundaries(const Scene& now, const Scene& before, const std::string& from) {
-  auto planes = [](const Scene& s) {
-    std::vector<double> v;
-    for (const SymmetryPlane& p : s.symmetry_planes) v.insert(v.end(), {p.point[0], p.point[1], p.point[2], p.normal[0], p.normal[1], p.normal[2]});
-    for (const RigidWall& w : s.rigid_walls) v.insert(v.end(), {w.point[0], w.point[1], w.point[2], w.normal[0], w.normal[1], w.normal[2]});
-    return v;
+  auto same_planes = [](const auto& a, const auto& b) {  // symmetry planes or rigid walls: point and normal
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const auto& p, const auto& q) {
+             return p.point == q.point && p.normal == q.normal;
+           });
   };
   const char* what = nullptr;
-  if (planes(now) != planes(before) || now.symmetry_planes.size() != before.symmetry_planes.size())
+  if (!same_planes(now.symmetry_planes, before.symmetry_planes) || !same_planes(now.rigid_walls, before.rigid_walls))
     what = "symmetry_planes and boundaries.rigid_walls";
   else if (!same_faces(now.fixed_faces, before.fixed_faces) || !same_faces(now.prescribed_faces, before.prescribed_faces))
     what = "boundaries.fixed_faces and boundaries.prescribed_faces";
@@ -47,11 +47,12 @@ void check_boundaries(const Scene& now, const Scene& before, const std::string& 
                 "(they hold the part's displacement from the start of the chain)");
 }
 
-}  // namespace
-
+// Nothing moves the part and no load acts on it: only its temperature can change.
 bool is_dwell(const Scene& scene) {
   return scene.dies.empty() && scene.prescribed_faces.empty() && norm(scene.loads.gravity) == 0;
 }
+
+}  // namespace
 
 StageLink begin_stage(const std::string& from_arg, const std::string& case_dir, const Scene& scene, const Comm& comm,
                       std::string& checkpoint, DieCarry& carry) {

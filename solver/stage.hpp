@@ -29,7 +29,4 @@ StageLink begin_stage(const std::string& from, const std::string& case_dir, cons
 // The scene on the chain's clock: time.end from the stage's start, each die's motion from its start.
 void apply_stage(const StageLink& link, Scene& scene);
 
-// Nothing moves the part and no load acts on it: only its temperature can change.
-bool is_dwell(const Scene& scene);
-
 }  // namespace rk
