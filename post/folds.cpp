@@ -89,8 +89,8 @@ std::vector<std::int64_t> FoldFinder::find(const std::vector<double>& x, double 
     for (int k = 0; k < corners; ++k)
       for (int i = 0; i < 3; ++i) normal[3 * std::size_t(face[k]) + i] += sign * m[i];
   }
-  // pairs within half a spacing: a grid of half-spacing bins over the surface particles
-  const double bin = 0.5 * h_, reach2 = bin * bin, apart2 = kApart * kApart * h_ * h_, same2 = kSame * kSame * h_ * h_;
+  // pairs within kReach spacings: a grid of bins that size over the surface particles
+  const double bin = kReach * h_, reach2 = bin * bin, apart2 = kApart * kApart * h_ * h_, same2 = kSame * kSame * h_ * h_;
   auto key = [&](const double* p, int di, int dj, int dk) {
     const auto q = [&](int i, int d) { return std::int64_t(std::floor(p[i] / bin)) + d; };
     return (q(0, di) * 73856093) ^ (q(1, dj) * 19349663) ^ (q(2, dk) * 83492791);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <array>
+#include <map>
 #include <sstream>
 #include <unordered_map>
 
@@ -240,6 +241,51 @@ double median_edge(const VolumeMesh& mesh) {
   if (edges.empty()) return 0;
   std::nth_element(edges.begin(), edges.begin() + std::ptrdiff_t(edges.size() / 2), edges.end());
   return edges[edges.size() / 2];
+}
+
+}  // namespace rk
+
+namespace rk {
+
+void append_body(VolumeMesh& mesh, const VolumeMesh& other, int body) {
+  const auto offset = std::int32_t(mesh.node_count());
+  mesh.body.resize(mesh.node_count(), 0);
+  mesh.X.insert(mesh.X.end(), other.X.begin(), other.X.end());
+  mesh.surface.insert(mesh.surface.end(), other.surface.begin(), other.surface.end());
+  mesh.body.resize(mesh.node_count(), std::uint8_t(body));
+  const std::int32_t cells0 = mesh.cell_offsets.back();
+  for (std::size_t c = 1; c < other.cell_offsets.size(); ++c) mesh.cell_offsets.push_back(cells0 + other.cell_offsets[c]);
+  for (auto node : other.cell_nodes) mesh.cell_nodes.push_back(node + offset);
+}
+
+void check_bodies_apart(const VolumeMesh& mesh, const std::vector<std::string>& names, double spacing) {
+  if (mesh.body.empty()) return;
+  const double reach = 0.75 * spacing;
+  std::map<std::array<std::int64_t, 3>, std::vector<std::size_t>> bins;  // the surface nodes by cubes of side reach
+  auto bin = [&](std::size_t I, int d) { return std::int64_t(std::floor(mesh.X[3 * I + std::size_t(d)] / reach)); };
+  for (std::size_t I = 0; I < mesh.node_count(); ++I)
+    if (mesh.surface[I]) bins[{bin(I, 0), bin(I, 1), bin(I, 2)}].push_back(I);
+  for (std::size_t I = 0; I < mesh.node_count(); ++I) {
+    if (!mesh.surface[I]) continue;
+    for (int a = -1; a <= 1; ++a)
+      for (int b = -1; b <= 1; ++b)
+        for (int c = -1; c <= 1; ++c) {
+          auto it = bins.find({bin(I, 0) + a, bin(I, 1) + b, bin(I, 2) + c});
+          if (it == bins.end()) continue;
+          for (std::size_t J : it->second) {
+            if (mesh.body[J] <= mesh.body[I]) continue;
+            double r2 = 0;
+            for (int i = 0; i < 3; ++i) r2 += (mesh.X[3 * I + i] - mesh.X[3 * J + i]) * (mesh.X[3 * I + i] - mesh.X[3 * J + i]);
+            if (r2 >= reach * reach) continue;
+            std::ostringstream s;
+            s << "geometry.bodies: '" << names[mesh.body[J]] << "' starts " << std::sqrt(r2) << " m from '" << names[mesh.body[I]]
+              << "' at (" << mesh.X[3 * I] << ", " << mesh.X[3 * I + 1] << ", " << mesh.X[3 * I + 2]
+              << ") m; bodies must start at least 0.75 discretization.spacing (" << reach
+              << " m) apart, where their contact begins (a body inside another, or touching it, would be thrown off at the first step)";
+            throw Error(s.str());
+          }
+        }
+  }
 }
 
 }  // namespace rk

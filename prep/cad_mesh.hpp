@@ -12,6 +12,7 @@ enum class CellType : std::int8_t { tet4 = 4, hex8 = 8 };
 struct VolumeMesh {
   std::vector<double> X;               // 3 per node, metres
   std::vector<std::uint8_t> surface;   // 1 if the node lies on the solid's boundary
+  std::vector<std::uint8_t> body;      // the body each node belongs to (Scene::bodies; 0 the part)
   std::vector<std::int32_t> cell_offsets{0};
   std::vector<std::int32_t> cell_nodes;  // gmsh node order within each cell
   std::size_t node_count() const { return surface.size(); }
@@ -27,6 +28,13 @@ struct MeshRequest {
 // Meshes the solid. .geo scripts see the spacing (in CAD units) as the number `h`
 // (as with `gmsh -setnumber h ...`); other CAD is meshed with all-hex subdivision at that spacing.
 VolumeMesh mesh_cad(const MeshRequest& request);
+
+// Appends `other` (a body's own mesh) to `mesh`, its nodes of body `body`.
+void append_body(VolumeMesh& mesh, const VolumeMesh& other, int body);
+
+// Refuses bodies that start closer than the part's contact acts (0.75 of the spacing,
+// solver/contact/part_contact.hpp), naming the two and where: they would be thrown apart at the first step.
+void check_bodies_apart(const VolumeMesh& mesh, const std::vector<std::string>& names, double spacing);
 
 // The faces of a cell (gmsh node order: 8 a hexahedron, 4 a tetrahedron), nodes in cyclic order.
 const std::vector<std::vector<int>>& cell_faces(int nodes_per_cell);

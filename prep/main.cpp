@@ -122,7 +122,14 @@ int run(int argc, char** argv) {
     for (const char* e : rk::kCaseEntries) fs::remove_all(fs::path(out) / e);
   }
   rk::VolumeMesh mesh = timer.run("mesh", [&] {
-    return rk::mesh_cad({scene.geometry.cad, scene.geometry.unit, scene.discretization.spacing});
+    rk::VolumeMesh m = rk::mesh_cad({scene.geometry.cad, scene.geometry.unit, scene.discretization.spacing});
+    std::vector<std::string> names{"part"};
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+      rk::append_body(m, rk::mesh_cad({scene.bodies[b].cad, scene.bodies[b].unit, scene.discretization.spacing}), int(b + 1));
+      names.push_back(scene.bodies[b].name);
+    }
+    rk::check_bodies_apart(m, names, scene.discretization.spacing);
+    return m;
   });
   const rk::Discretization disc =
       timer.run("discretize", [&] {

@@ -97,7 +97,8 @@ std::vector<Subdomain> build_subdomains(const SubdomainRequest& r) {
       s.volume.push_back(r.disc.volume[I]);
       s.spacing.push_back(r.disc.spacing[I]);
       s.owner.push_back(owner[I]);
-      s.flags.push_back(r.mesh.surface[I] ? kSurface : 0);
+      const int body = r.mesh.body.empty() ? 0 : r.mesh.body[I];
+      s.flags.push_back(std::uint8_t((r.mesh.surface[I] ? kSurface : 0) | (body << kBodyShift)));
     }
     std::vector<std::int32_t> cell_local(nc, -1);
     s.cell_node_offsets.push_back(0);

@@ -20,6 +20,8 @@ std::vector<std::string> history_columns(const Scene& scene) {
     for (const auto& t : kConductionColumns) c.push_back(t.name);
   if (scene.damage.on())
     for (const auto& t : kDamageColumns) c.push_back(t.name);
+  if (scene.part_contact())
+    for (const auto& t : kPartContactColumns) c.push_back(t.name);
   for (const auto& w : scene.rigid_walls)
     for (const char* q : kWallColumns) c.push_back(w.name + q);
   for (const auto& d : scene.dies) {
@@ -43,6 +45,8 @@ std::string history_unit(const std::string& column) {
   for (const auto& s : kConductionColumns)
     if (column == s.name) return s.unit;
   for (const auto& s : kDamageColumns)
+    if (column == s.name) return s.unit;
+  for (const auto& s : kPartContactColumns)
     if (column == s.name) return s.unit;
   auto ends = [&](const char* tail) { return column.ends_with(tail); };
   if (ends(".work") || ends(".heat") || ends(".delivered")) return "J";

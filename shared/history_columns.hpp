@@ -38,6 +38,10 @@ inline constexpr HistoryColumn kTemperatureColumns[] = {
 // and radiation, cumulative; and per die (its column DIE.heat) the heat conducted into it.
 inline constexpr HistoryColumn kConductionColumns[] = {{"heat_to_ambient", "J"}};
 
+// With the part's contact with itself or between bodies (Scene::part_contact): the surface particles in
+// contact with another part of the part this step (each pair counted at both its particles).
+inline constexpr HistoryColumn kPartContactColumns[] = {{"part_contacts", "count"}};
+
 // With a `damage` section: each criterion's largest value over the part's points.
 inline constexpr HistoryColumn kDamageColumns[] = {
     {"damage_cockcroft_latham_max", "-"}, {"damage_brozzo_max", "-"}, {"damage_oyane_max", "-"}};

@@ -407,7 +407,21 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     std::filesystem::path p(cad);
     s.geometry.cad = (p.is_absolute() ? p : (s.dir / p)).lexically_normal().string();
     g.record("cad", s.geometry.cad);  // the resolved deck holds the absolute path
-    s.geometry.unit = unit_length(g.text("unit", "m", {"m", "mm", "cm", "in"}));
+    const std::string unit = g.text("unit", "m", {"m", "mm", "cm", "in"});
+    s.geometry.unit = unit_length(unit);
+    g.list("bodies", [&](Section& b) {
+      Scene::Body body;
+      body.name = b.text("name", std::nullopt);
+      if (body.name == "part" || std::any_of(s.bodies.begin(), s.bodies.end(), [&](const Scene::Body& o) { return o.name == body.name; }))
+        throw Error(b.where_of("name") + ": '" + body.name + "' names the part or another body");
+      std::filesystem::path c(b.text("cad", std::nullopt));
+      body.cad = (c.is_absolute() ? c : (s.dir / c)).lexically_normal().string();
+      b.record("cad", body.cad);
+      body.unit = unit_length(b.text("unit", unit, {"m", "mm", "cm", "in"}));
+      s.bodies.push_back(body);
+    });
+    if (s.bodies.size() + 1 > std::size_t(kMaxBodies))  // the part's and the bodies' ids in 7 bits of particles/flags
+      throw Error(g.where_of("bodies") + ": at most " + std::to_string(kMaxBodies - 1) + " bodies beside the part");
     g.done();
   }
   {
@@ -426,6 +440,9 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     o.volumetric = d.text("volumetric", o.volumetric, {"fbar", "none"});
     o.ebc_method = d.text("ebc_method", o.ebc_method, {"nodal", "transformation"});
     o.jitter = d.number("jitter", o.jitter, {0, 0.5, false, true});
+    if (!s.bodies.empty() && o.integration == "nodal")
+      throw Error(name + ": key 'geometry.bodies' cannot be combined with 'discretization.integration' = nodal (its "
+                  "smoothing cells do not know the bodies); use gauss");
     d.done();
   }
   // material.library: a file of material keys (geometry/materials/), relative to the scene; the
@@ -538,6 +555,12 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
   {
     Section ic = top.section("initial_conditions");
     s.initial.velocity = ic.vec3("velocity", Vec3{0, 0, 0});
+    ic.list("bodies", [&](Section& b) {  // each body's own velocity (the part's is `velocity` above)
+      const std::string named = b.text("name", std::nullopt);
+      auto it = std::find_if(s.bodies.begin(), s.bodies.end(), [&](const Scene::Body& o) { return o.name == named; });
+      if (it == s.bodies.end()) throw Error(b.where_of("name") + ": no body '" + named + "' in geometry.bodies");
+      it->velocity = b.vec3("velocity", Vec3{0, 0, 0});
+    });
     Section grad = ic.section("velocity_gradient");  // rows: the gradients of v_x, v_y, v_z
     for (int i = 0; i < 3; ++i) {
       const Vec3 row = grad.vec3(std::string(1, char('x' + i)), Vec3{0, 0, 0});
@@ -687,6 +710,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
   {
     Section c = top.section("contact");
     s.contact.penalty_scale = c.number("penalty_scale", s.contact.penalty_scale, {0, 1, true, false});
+    s.contact.self = c.text("self", s.dies.empty() ? "false" : "true", {"true", "false"}) == "true";
     c.done();
   }
   {

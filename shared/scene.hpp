@@ -139,6 +139,8 @@ struct TemperatureFace {
   double temperature = 0;  // K
 };
 
+inline constexpr int kMaxBodies = 128;  // the part and the bodies: their ids fill 7 bits (subdomain.hpp)
+
 struct Scene {
   std::filesystem::path file;  // the YAML it was read from
   std::filesystem::path dir;   // folder of that file: CAD paths are relative to it
@@ -147,6 +149,17 @@ struct Scene {
     std::string cad;          // path relative to dir
     double unit = 1.0;        // metres per CAD length unit
   } geometry;
+  // Further deformable bodies of the part's material (a striker, an insert, a second billet): each its
+  // own CAD (geometry.bodies), meshed at the part's spacing, with its own supports (no shape function
+  // spans two bodies) and its own initial velocity (initial_conditions.bodies); the part's geometry.cad
+  // is body 0. They meet the part and each other through the part's contact (solver/contact/part_contact.hpp).
+  struct Body {
+    std::string name;
+    std::string cad;    // absolute path
+    double unit = 1.0;  // metres per CAD unit
+    Vec3 velocity{};    // m/s, uniform
+  };
+  std::vector<Body> bodies;
 
   struct Discretization {
     double spacing = 0;       // m, target particle spacing
@@ -213,6 +226,9 @@ struct Scene {
 
   struct Contact {
     double penalty_scale = 0.25;  // k_I = scale * m_I / dt^2 (< 1: contact never limits the step)
+    // the part's contact with itself (a fold's faces; solver/contact/part_contact.hpp); default on
+    // with dies. Between bodies it is always on.
+    bool self = false;
   } contact;
 
   // Reference-configuration updates (solver/rk/reference_update.hpp): when the Green strain of any
@@ -269,6 +285,8 @@ struct Scene {
     double max_pressure_ratio = 20;  // |p| / (rho0 c_L v_max + sigma_y) that stops the run (0: no bound)
   } health;
 
+  // The part's contact with itself or between its bodies (solver/contact/part_contact.hpp) is modeled.
+  bool part_contact() const { return contact.self || !bodies.empty(); }
   std::string resolved_yaml;     // the deck with every default filled in
   std::string prep_hash;         // hash of the scene keys rkprep depends on (geometry, discretization, the dies'
                                  // names, CAD paths and units; not the CAD files' contents)

@@ -23,7 +23,11 @@ namespace rk {
 
 inline constexpr std::int64_t kFormatVersion = 4;
 
+// particles/flags: bit 0 the surface; bits 1-7 the body the particle belongs to (0: the part's
+// geometry.cad, then the scene's bodies in order)
 enum ParticleFlag : std::uint8_t { kSurface = 1 };
+inline constexpr int kBodyShift = 1;
+inline int body_of(std::uint8_t flags) { return flags >> kBodyShift; }
 
 struct DieSurface {
   std::vector<double> vertices;        // 3 per vertex, m, reference (t = 0) position

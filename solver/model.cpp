@@ -39,7 +39,8 @@ void build_shape_functions(Model& md, const Subdomain& sub, const LocalShapes& s
   md.nbr_offsets.assign(1, 0);
   for (std::size_t g = 0; g < md.m; ++g) {
     const std::size_t k0 = md.nbr.size();
-    const RkResult r = shapes.append(&md.point_X[3 * g], md.nbr, md.N, md.dN);  // ascending global id
+    const int body = md.body[std::size_t(sub.cell_nodes[std::size_t(sub.cell_node_offsets[std::size_t(sub.point_cell[g])])])];
+    const RkResult r = shapes.append(&md.point_X[3 * g], body, md.nbr, md.N, md.dN);  // ascending global id
     require_regular(md, r, &sub.point_X[3 * g], md.nbr.size() - k0, "integration point");
     md.nbr_offsets.push_back(std::int64_t(md.nbr.size()));
   }
@@ -78,8 +79,8 @@ void build_smoothed_gradients(Model& md, const Subdomain& sub, const LocalShapes
   std::vector<std::uint8_t> mark(md.n, 0);
   for (std::size_t g = 0; g < md.m; ++g) {
     found.clear();
-    shapes.covering(&md.point_X[3 * g], found);
-    for (auto k = face_offsets[g]; k < face_offsets[g + 1]; ++k) shapes.covering(&sub.face_X[3 * face_of[k]], found);
+    shapes.covering(&md.point_X[3 * g], 0, found);  // one body: the scene refuses bodies with nodal integration
+    for (auto k = face_offsets[g]; k < face_offsets[g + 1]; ++k) shapes.covering(&sub.face_X[3 * face_of[k]], 0, found);
     const std::size_t k0 = md.nbr.size();
     for (auto I : found)
       if (!mark[I]) mark[I] = 1, md.nbr.push_back(I);
@@ -93,7 +94,7 @@ void build_smoothed_gradients(Model& md, const Subdomain& sub, const LocalShapes
   std::vector<double> N, dN, terms;
   auto evaluate = [&](const double* x, const char* where) {
     cols.clear(), N.clear(), dN.clear();
-    require_regular(md, shapes.append(x, cols, N, dN), x, cols.size(), where);
+    require_regular(md, shapes.append(x, 0, cols, N, dN), x, cols.size(), where);
   };
   for (std::size_t g = 0; g < md.m; ++g) {
     evaluate(&md.point_X[3 * g], "integration point");
@@ -142,7 +143,7 @@ void build_material_rows(Model& md, const LocalShapes& shapes) {
   md.material_cols.clear(), md.material_N.clear();
   for (std::size_t I = 0; I < md.n; ++I) {
     const std::size_t k0 = md.material_cols.size();
-    if (md.owned[I] && !shapes.append(&md.Xr[3 * I], md.material_cols, md.material_N, dN).regular) {
+    if (md.owned[I] && !shapes.append(&md.Xr[3 * I], md.body[I], md.material_cols, md.material_N, dN).regular) {
       md.material_cols.resize(k0), md.material_N.resize(k0);  // a particle left alone: its coefficient
       md.material_cols.push_back(std::int32_t(I)), md.material_N.push_back(1.0);
     }
@@ -169,10 +170,12 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   md.mass.resize(md.n);
   md.owned.resize(md.n);
   md.surface.resize(md.n);
+  md.body.resize(md.n);
   for (std::size_t I = 0; I < md.n; ++I) {
     md.mass[I] = md.density * sub.volume[I];
     md.owned[I] = sub.owner[I] == sub.rank;
     md.surface[I] = (sub.flags[I] & kSurface) != 0;
+    md.body[I] = std::uint8_t(body_of(sub.flags[I]));
   }
   build_constraints(md, sub, scene);
 
@@ -199,7 +202,7 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
     const std::vector<double> now = shortest_edges(md, md.Xr);
     for (std::size_t c = 0; c < md.cells; ++c) md.cell_h0[c] = std::min(md.cell_h0[c], now[c]);
   }
-  const LocalShapes shapes(md.Xr, sub.volume, md.spacing, scene);
+  const LocalShapes shapes(md.Xr, sub.volume, md.spacing, md.body, scene);
   if (scene.discretization.integration == "nodal" && md.m > 0 && sub.face_count() == 0)
     throw Error("subdomain of rank " + std::to_string(md.rank) + " holds no nodal-integration faces; re-run rkprep");
   if (scene.discretization.integration == "nodal") build_smoothed_gradients(md, sub, shapes);

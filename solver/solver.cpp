@@ -13,6 +13,7 @@
 #include "boundary/essential_bc.hpp"
 #include "contact/die_contact.hpp"
 #include "contact/die_fill.hpp"
+#include "contact/part_contact.hpp"
 #include "contact/presses.hpp"
 #include "energy.hpp"
 #include "error.hpp"
@@ -97,6 +98,7 @@ class Simulation {
   RunClock clock_;
   std::unique_ptr<EssentialBcs> ebc_;
   std::unique_ptr<DieContact> dies_;
+  std::unique_ptr<PartContact> parts_;  // the part with itself and between bodies
   std::unique_ptr<Presses> presses_;    // with dies driven by their press only
   std::unique_ptr<DieFill> fill_;       // with dies only
   std::unique_ptr<HeatTransfer> heat_;  // with conduction only
@@ -244,6 +246,7 @@ void Simulation::contact() {
   // the penalty's step: the smallest since the start or the last reference update (< 0 just after one)
   const double dt_min = clock_.dt_penalty > 0 ? clock_.dt_penalty : clock_.dt_stable;
   contact_bound_ = dies_->compute(md_, st_, st_.t, clock_.dt_stable, dt_min);
+  contact_bound_ = std::max(contact_bound_, parts_->compute(md_, st_, clock_.dt_stable, dt_min, comm_));
   timer_.stop(kContact);
 }
 
@@ -312,6 +315,7 @@ void Simulation::internal_force() {
   clear_internal_force(st_);
   add_internal_force(md_, st_, scale, md_.boundary_points);
   dies_->add_to(md_, st_, scale);  // die contact forces of the owned particles and points, once over all ranks
+  parts_->add_to(md_, st_, scale);
   timer_.stop(kInternalForce);
   exchange_->start(st_.partial);
   timer_.stop(kOverlapExchange);
@@ -343,6 +347,7 @@ void Simulation::constraints(double dt, double dt_avg) {
 
 void Simulation::boundary_work(double dt_avg) {
   dies_->account(md_, st_, v_old_, dt_avg, st_.t);
+  parts_->account(md_, st_, v_old_, dt_avg);
   const double* g = scene_.loads.gravity.data();
   if (norm(scene_.loads.gravity) > 0)  // work of the body force on the owned particles
     for (std::size_t I = 0; I < md_.n; ++I)
@@ -361,7 +366,7 @@ bool Simulation::history_due(bool last) const {
 void Simulation::history(double dt, bool last) {
   static const std::vector<double> none;
   const std::vector<double>& filled = fill_ ? fill_->filled(*dies_, comm_) : none;
-  const HistoryRow row = history_->record(md_, st_, *dies_, filled, *ebc_, v_old_, dt, clock_.kinetic0, comm_);
+  const HistoryRow row = history_->record(md_, st_, *dies_, *parts_, filled, *ebc_, v_old_, dt, clock_.kinetic0, comm_);
   tracks_->record(md_, st_, comm_);
   const double t_end = scene_.time.end, run = t_end - t0_;  // the run's end and length (a stage's own)
   max_ebc_error_ = std::max(max_ebc_error_, row.ebc_error);
@@ -414,9 +419,10 @@ void Simulation::rebind() {
   dies_ = std::make_unique<DieContact>(md_, scene_, md_.dies);
   dies_->totals() = totals;
   dies_->touched() = touched;
+  parts_ = std::make_unique<PartContact>(md_, scene_, comm_);
   exchange_.emplace(md_, 3);
   headroom_ = force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm_);
-  force_terms_ = force_terms(md_, *dies_, comm_);
+  force_terms_ = force_terms(md_, *dies_, *parts_, comm_);
   if (heat_) heat_ = std::make_unique<HeatTransfer>(md_, scene_, comm_);  // the capacities on the new reference
   results_ = collectively(
       comm_, [&] { return std::make_unique<ResultWriter>(opt_.case_dir, md_, scene_.prep_hash, results_->frames()); });
@@ -445,6 +451,9 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
                                                         " dies but the scene declares " +
                                                         std::to_string(scene_.dies.size()) + "; re-run rkprep");
   st_ = State::initial(md_, scene_.initial.velocity.data(), scene_.initial.velocity_gradient.data());
+  for (std::size_t I = 0; I < md_.n; ++I)  // the bodies' own velocities
+    if (md_.body[I] > 0)
+      for (int i = 0; i < 3; ++i) st_.v[3 * I + i] = scene_.bodies[md_.body[I] - 1u].velocity[i];
   init_bulk_viscosity(md_, st_, scene_.bulk_viscosity);
   if (scene_.material.thermal()) {  // by the points' positions at t = 0
     st_.temperature.resize(md_.m);
@@ -478,6 +487,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   ebc_ = collectively(comm, [&] { return std::make_unique<EssentialBcs>(md_, scene_, comm); });
   ebc_->apply(md_, st_, 0.0, 0.0, 0.0, st_.v);  // initial velocities that meet the conditions' rates
   dies_ = std::make_unique<DieContact>(md_, scene_, md_.dies);
+  parts_ = std::make_unique<PartContact>(md_, scene_, comm);
   if (!md_.dies.empty()) {  // the headroom of the dies' fixed-point sums: every rank's contact terms
     double terms = double(dies_->terms());
     comm.sum(&terms, 1);
@@ -517,7 +527,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   const int die_count = int(md_.dies.size());
   exchange_.emplace(md_, 3);
   headroom_ = force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm);
-  force_terms_ = force_terms(md_, *dies_, comm);
+  force_terms_ = force_terms(md_, *dies_, *parts_, comm);
   v_old_.assign(st_.v.size(), 0.0);
   if (st_.reference_updates > 0) {  // a restart after updates: back onto the checkpoint's reference
     collectively(comm, [&] { return rebuild_on_reference(md_, st_, scene_, comm), 0; });

@@ -58,6 +58,9 @@ struct State {
   // work of the body force done on the OWNED particles of this rank (sum over ranks = total); the
   // contact forces' work is the obstacles' (contact/die_contact.hpp)
   double external_work = 0;
+  // work of the pair forces of the part's contact with itself and between bodies on this rank's slaves
+  // (contact/part_contact.hpp): the springs' energy while they are compressed, zero once they let go
+  double part_contact_work = 0;
   double update_work = 0;  // kinetic energy changed by reference updates (<= 0: smoothed away)
   double viscous_work = 0;  // work of the bulk viscosity on this rank's points (dissipated, >= 0)
   // with a thermal strain (Model::thermal_strain; empty otherwise): each point's stress-free stretch at

@@ -112,7 +112,7 @@ void build_constraints(Model& md, const Subdomain& sub, const Scene& scene) {
   md.ebc_offsets.assign(1, 0);
   md.face_particles.assign(all_faces(scene), 0);
 
-  const LocalShapes shapes(md.Xr, sub.volume, md.spacing, scene);
+  const LocalShapes shapes(md.Xr, sub.volume, md.spacing, md.body, scene);
   std::vector<std::size_t> faces;
   std::vector<double> dN;
   for (std::size_t I = 0; I < md.n; ++I) {
@@ -133,7 +133,7 @@ void build_constraints(Model& md, const Subdomain& sub, const Scene& scene) {
     // method needs it only to measure its error (and to show u^h), so it does without where the
     // moment matrix is singular (a quadratic basis at a corner); the exact one cannot.
     const std::size_t k0 = md.ebc_cols.size();
-    if (!shapes.append(&md.Xr[3 * I], md.ebc_cols, md.ebc_N, dN).regular) {
+    if (!shapes.append(&md.Xr[3 * I], md.body[I], md.ebc_cols, md.ebc_N, dN).regular) {
       if (scene.discretization.ebc_method == "transformation")
         throw Error("the RK moment matrix is singular at the constrained " + where(md, I) +
                     "; increase discretization.dilation or use discretization.ebc_method: nodal");

@@ -16,7 +16,7 @@ constexpr double HistorySums::* kSumFields[] = {
     &HistorySums::contacts,     &HistorySums::point_contacts, &HistorySums::spring_energy,
     &HistorySums::friction_work, &HistorySums::contact_work,  &HistorySums::volume,
     &HistorySums::ebc_work,     &HistorySums::update_work,    &HistorySums::viscous_work,
-    &HistorySums::heat,         &HistorySums::ambient_heat};
+    &HistorySums::heat,         &HistorySums::ambient_heat,   &HistorySums::part_contacts};
 constexpr std::size_t kSumCount = std::size(kSumFields);
 constexpr std::size_t kPerDie = 5;  // fx, fy, fz, press work, heat
 
@@ -68,7 +68,8 @@ History::History(const std::string& case_dir, const Scene& scene, const Model& m
   sums_.resize(kSumCount + scene.rigid_walls.size() + kPerDie * scene.dies.size() + 3 * faces);
 }
 
-HistoryRow History::record(const Model& md, const State& st, const DieContact& dies, const std::vector<double>& filled,
+HistoryRow History::record(const Model& md, const State& st, const DieContact& dies, const PartContact& parts,
+                           const std::vector<double>& filled,
                            const EssentialBcs& ebc,
                            const std::vector<double>& v_old, double dt, double kinetic0, const Comm& comm) {
   HistoryRow out;
@@ -102,6 +103,9 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
     double* die = &sums_[die0 + kPerDie * d];
     die[0] = t.force[0], die[1] = t.force[1], die[2] = t.force[2], die[3] = t.press_work, die[4] = t.heat;
   }
+  s.contact_work += st.part_contact_work, s.spring_energy += parts.spring_energy();
+  s.part_contacts = double(parts.contacts());
+  penetration = std::max(penetration, parts.max_penetration());
   std::copy(ebc.reactions().begin(), ebc.reactions().end(), sums_.begin() + std::ptrdiff_t(face0));
   for (std::size_t k = 0; k < kSumCount; ++k) sums_[k] = s.*kSumFields[k];
   comm.sum(sums_.data(), int(sums_.size()));
@@ -133,6 +137,7 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
   const bool conducting = !st.particle_temperature.empty();
   if (conducting) row_[c++] = s.ambient_heat;
   for (std::size_t k = 0; k < kDamageCriteria && !st.damage.empty(); ++k) row_[c++] = worst[5 + k];
+  if (scene_.part_contact()) row_[c++] = s.part_contacts;
   for (std::size_t w = 0; w < walls; ++w) row_[c++] = sums_[kSumCount + w];
   std::size_t ram = 0;  // the press-driven dies' rams, in die order
   for (std::size_t d = 0; d < dies.size(); ++d) {

@@ -10,6 +10,7 @@
 
 #include "boundary/essential_bc.hpp"
 #include "contact/die_contact.hpp"
+#include "contact/part_contact.hpp"
 #include "energy.hpp"
 #include "model.hpp"
 #include "parallel/comm.hpp"
@@ -38,6 +39,7 @@ struct HistorySums {
   double update_work = 0, viscous_work = 0;
   double heat = 0;          // sum_g w_g T_g (K m^3), with a temperature
   double ambient_heat = 0;  // given to the ambient air (J), with conduction
+  double part_contacts = 0;  // slaves of the part's contact with itself or between bodies
 };
 
 // What a row tells the time loop.
@@ -56,7 +58,8 @@ class History {
   // One row at t^n (v_old = v^{n-1/2}; st.v = v^{n+1/2}; dt the step from t^n). Collective: a write
   // that fails on rank 0 (a full disk) stops every rank.
   // `filled`: each die's filled fraction (contact/die_fill.hpp)
-  HistoryRow record(const Model& md, const State& st, const DieContact& dies, const std::vector<double>& filled,
+  HistoryRow record(const Model& md, const State& st, const DieContact& dies, const PartContact& parts,
+                    const std::vector<double>& filled,
                     const EssentialBcs& ebc,
                     const std::vector<double>& v_old, double dt, double kinetic0, const Comm& comm);
 

@@ -179,6 +179,7 @@ double fastest_speed(const Scene& scene, const double lo[3], const double hi[3])
     v2 = std::max(v2, s2);
   }
   double v = std::sqrt(v2);
+  for (const auto& b : scene.bodies) v = std::max(v, norm(b.velocity));
   for (const auto& d : scene.dies) v = std::max(v, d.motion.fastest());
   for (const auto& f : scene.prescribed_faces) v = std::max(v, f.motion.fastest());
   return v;

@@ -39,6 +39,22 @@ std::vector<double> Comm::gather_all(const std::vector<double>& mine, std::int64
   return all;
 }
 
+void Comm::all_gather(const double* mine, int count, double* all) const {
+  MPI_Allgather(mine, count, MPI_DOUBLE, all, count, MPI_DOUBLE, MPI_COMM_WORLD);
+}
+
+void Comm::exchange(const std::vector<double>& send, const std::vector<int>& send_counts, std::vector<double>& received,
+                    std::vector<int>& recv_counts) const {
+  recv_counts.resize(std::size_t(size_));
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  send_at_.resize(std::size_t(size_)), recv_at_.resize(std::size_t(size_));
+  int s = 0, r = 0;
+  for (std::size_t q = 0; q < std::size_t(size_); ++q) send_at_[q] = s, recv_at_[q] = r, s += send_counts[q], r += recv_counts[q];
+  received.resize(std::size_t(r));
+  MPI_Alltoallv(send.data(), send_counts.data(), send_at_.data(), MPI_DOUBLE, received.data(), recv_counts.data(),
+                recv_at_.data(), MPI_DOUBLE, MPI_COMM_WORLD);
+}
+
 void Comm::barrier() const { MPI_Barrier(MPI_COMM_WORLD); }
 
 void Comm::check(bool ok, const std::string& message) const {

@@ -16,10 +16,11 @@ int force_headroom(const Model& md, int per_column, int extra, const Comm& comm)
   return headroom_bits(std::int64_t(most) + extra);
 }
 
-ForceTerms force_terms(const Model& md, const DieContact& dies, const Comm& comm) {
+ForceTerms force_terms(const Model& md, const DieContact& dies, const PartContact& parts, const Comm& comm) {
   std::vector<Fixed> internal(md.n, 0), contact(md.n, 0);
   for (auto k = md.nbr_offsets.front(); k < md.nbr_offsets.back(); ++k) ++internal[std::size_t(md.nbr[k])];
   dies.count_terms(md, contact);
+  parts.count_terms(md, contact);
   OverlapExchange exchange(md, 1);  // the shared copies' counts summed: every rank's terms
   exchange.sum(internal);
   exchange.sum(contact);

@@ -6,6 +6,7 @@
 #include <span>
 
 #include "contact/die_contact.hpp"
+#include "contact/part_contact.hpp"
 #include "model.hpp"
 #include "parallel/comm.hpp"
 #include "parallel/fixed_point.hpp"
@@ -19,8 +20,8 @@ namespace rk {
 int force_headroom(const Model& md, int per_column, int extra, const Comm& comm);
 // Every term summed into a particle's force (st.partial), the most over the particles of ALL ranks:
 // one from each point whose row holds it (the internal force), and the contact terms
-// (DieContact::count_terms), for step_headroom. Collective; set-up only (allocates).
-ForceTerms force_terms(const Model& md, const DieContact& dies, const Comm& comm);
+// (DieContact::count_terms, PartContact::count_terms), for step_headroom. Collective; set-up only (allocates).
+ForceTerms force_terms(const Model& md, const DieContact& dies, const PartContact& parts, const Comm& comm);
 
 void clear_internal_force(State& st);
 void add_internal_force(const Model& md, State& st, const FixedScale& scale, std::span<const std::int32_t> points);

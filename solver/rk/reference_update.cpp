@@ -30,7 +30,7 @@ std::vector<double> owned_records(const Model& md, const State& st) {
       r[kRef + i] = st.u_ref[3 * I + i];
     }
     r[kVolume] = md.volume[I], r[kSpacing0] = md.spacing0[I];
-    r[kFlags] = md.surface[I] ? double(kSurface) : 0.0;
+    r[kFlags] = double((md.surface[I] ? kSurface : 0) | (md.body[I] << kBodyShift));
     r[kOwner] = md.rank;
     r[kTemperature] = st.particle_temperature.empty() ? 0.0 : st.particle_temperature[I];
     r[kSurfaceHeat] = st.surface_heat.empty() ? 0.0 : st.surface_heat[I];
@@ -70,7 +70,8 @@ std::vector<std::vector<std::int32_t>> gather_lists(const std::vector<std::int32
 // a scale-free spread, once"). The points are tested on their ranks and the grown particles are
 // shared, so every rank count grows the same ones.
 std::vector<double> conditioned_spacing(const Model& md, const Scene& scene, const std::vector<double>& Xr,
-                                        const std::vector<double>& volume, std::vector<double> spacing, const Comm& comm) {
+                                        const std::vector<double>& volume, const std::vector<std::uint8_t>& body,
+                                        std::vector<double> spacing, const Comm& comm) {
   constexpr double kPoor = 0.03, kGrow = 1.25, kReach = 1.5;
   const std::size_t total = spacing.size();
   const Kernel kernel = parse_kernel(scene.discretization.kernel);
@@ -79,9 +80,14 @@ std::vector<double> conditioned_spacing(const Model& md, const Scene& scene, con
   for (std::size_t I = 0; I < total; ++I) radius[I] = scene.discretization.dilation * spacing[I], reach[I] = kReach * radius[I];
   const NeighbourGrid grid(Xr.data(), radius.data(), total), near(Xr.data(), reach.data(), total);
   const RkParticles particles{Xr.data(), volume.data(), radius.data()};
+  std::vector<std::uint8_t> point_body(md.m);  // a point's body: its cell's nodes'
+  for (std::size_t c = 0; c < md.cells; ++c)
+    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g)
+      point_body[std::size_t(g)] = md.body[std::size_t(md.cell_nodes[std::size_t(md.cell_node_offsets[c])])];
   for (std::size_t g = 0; g < md.m; ++g) {
     found.clear();
     grid.covering(&md.point_X[3 * g], found);
+    std::erase_if(found, [&](std::int32_t J) { return body[std::size_t(J)] != point_body[g]; });
     if (neighbour_spread(&md.point_X[3 * g], found, particles, kernel) >= kPoor) continue;
     found.clear();
     near.covering(&md.point_X[3 * g], found);
@@ -149,14 +155,14 @@ void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm
   // kinetic energy this removes is booked as update_work (docs/decisions.md, "Reference updates: the
   // particles take the material's position and velocity"). Nothing here throws: every rank must
   // reach the rebuild's collectives.
-  const LocalShapes shapes(md.Xr, md.volume, md.spacing, scene);
+  const LocalShapes shapes(md.Xr, md.volume, md.spacing, md.body, scene);
   std::vector<std::int32_t> cols;
   std::vector<double> N, dN, moved(3 * md.n), velocity(st.v);
   for (std::size_t I = 0; I < md.n; ++I) {
     if (!md.owned[I]) continue;
     cols.clear(), N.clear(), dN.clear();
     double x[3] = {md.Xr[3 * I], md.Xr[3 * I + 1], md.Xr[3 * I + 2]};
-    if (shapes.append(&md.Xr[3 * I], cols, N, dN).regular) {
+    if (shapes.append(&md.Xr[3 * I], md.body[I], cols, N, dN).regular) {
       for (int i = 0; i < 3; ++i) velocity[3 * I + i] = 0;
       for (std::size_t k = 0; k < cols.size(); ++k)
         for (int i = 0; i < 3; ++i) {
@@ -190,11 +196,13 @@ void rebuild_on_reference(Model& md, State& st, const Scene& scene, const Comm& 
     record[gid] = &all[kRecord * k];
   }
   std::vector<double> Xr(3 * total), volume(total), h0(total);  // the new reference: X + d^ref
+  std::vector<std::uint8_t> body(total);
   for (std::size_t I = 0; I < total; ++I) {
     for (int i = 0; i < 3; ++i) Xr[3 * I + i] = record[I][kX + i] + record[I][kRef + i];
     volume[I] = record[I][kVolume], h0[I] = record[I][kSpacing0];
+    body[I] = std::uint8_t(body_of(std::uint8_t(record[I][kFlags])));
   }
-  const std::vector<double> spacing = conditioned_spacing(md, scene, Xr, volume, h0, comm);
+  const std::vector<double> spacing = conditioned_spacing(md, scene, Xr, volume, body, h0, comm);
   std::vector<double> radius(total);
   for (std::size_t I = 0; I < total; ++I) radius[I] = scene.discretization.dilation * spacing[I];
   const NeighbourGrid grid(Xr.data(), radius.data(), total);

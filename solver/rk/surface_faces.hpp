@@ -9,8 +9,8 @@
 namespace rk {
 
 // Face f's centre and area now: half the cross product of the diagonals (a quadrilateral) or of two
-// edges (a triangle).
-inline double surface_face(const Model& md, const State& st, std::size_t f, double centre[3]) {
+// edges (a triangle); that half cross product, the outward normal times the area, into `normal` if given.
+inline double surface_face(const Model& md, const State& st, std::size_t f, double centre[3], double* normal = nullptr) {
   const auto k0 = md.surface_face_offsets[f], n = md.surface_face_offsets[f + 1] - k0;
   double x[4][3];
   centre[0] = centre[1] = centre[2] = 0;
@@ -24,6 +24,8 @@ inline double surface_face(const Model& md, const State& st, std::size_t f, doub
     d2[i] = n == 4 ? x[3][i] - x[1][i] : x[2][i] - x[0][i];
   }
   const double a[3] = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2], d1[0] * d2[1] - d1[1] * d2[0]};
+  if (normal)
+    for (int i = 0; i < 3; ++i) normal[i] = 0.5 * a[i];
   return 0.5 * std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
 }
 
