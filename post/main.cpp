@@ -288,8 +288,8 @@ void write_pieces(const std::string& case_dir, int f, int ranks, std::int64_t pa
         const auto I = std::size_t(sub.cell_nodes[std::size_t(sub.cell_node_offsets[c] + k)]);
         const auto at = point_of.find(sub.global_id[I]);
         if (at == point_of.end())
-          throw rk::Error(rk::result_frame_path(case_dir, r, f) + ": lacks particle " + std::to_string(sub.global_id[I]) +
-                          " that the rank owns");
+          throw rk::Error(rk::result_frame_path(case_dir, r, f) + ": holds no particle " + std::to_string(sub.global_id[I]) +
+                          ", a node of the rank's cells");
         nodes[k] = at->second;
       }
       cells.add(nodes, count, count == 8 ? rk::kVtkHexahedron : rk::kVtkTetra);
@@ -377,7 +377,7 @@ int run(int argc, char** argv) {
   app.add_flag("--partitioned", partitioned,
                "write each frame as one piece per rank (vtk/frame_FFFFF/rank_RRRR.vtu: its owned particles, its cells and "
                "their points owned elsewhere as vtkGhostType ghosts) and a .pvtu listing them, for ParaView to read in "
-               "parallel (pvbatch, pvserver); rkpost holds one rank's piece at a time, not the whole part");
+               "parallel (pvbatch, pvserver); rkpost builds one rank's piece at a time instead of the whole part's frame");
   bool no_pictures = false;
   app.add_flag("--no-pictures", no_pictures, "skip the plots and ParaView pictures (CASE/plots/)");
   app.add_flag("--quiet", quiet, "print nothing but errors");
