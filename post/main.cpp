@@ -53,13 +53,14 @@ struct ForeignFrame : rk::Error {
   using rk::Error::Error;
 };
 
-// Rank r's result frame f, there (else an error naming it), of this rkpost's format and computed on
-// this case's subdomains (else a ForeignFrame).
+// The path of rank r's result frame f, which must be there (else an error naming it).
 std::string result_frame_file(const std::string& case_dir, int r, int f) {
   const std::string path = rk::result_frame_path(case_dir, r, f);
   if (!fs::exists(path)) throw rk::Error(path + ": missing (the rank did not write this frame)");
   return path;
 }
+
+// A result frame must be of this rkpost's format and computed on this case's subdomains (else a ForeignFrame).
 void check_result_frame(const rk::H5File& h, const std::string& scene_hash) {
   const std::string& path = h.path();
   const std::int64_t format = h.has_attr("format") ? h.attr_int("format") : 0;
@@ -220,9 +221,9 @@ std::pair<rk::VtuCells, std::vector<std::int64_t>> read_cells(const std::string&
 // owned particles, its own integration cells and the points of those cells that other ranks own,
 // with the owners' values, marked vtkGhostType = 1 (VTK's DUPLICATEPOINT: a copy of a point another
 // piece owns) so that ParaView counts every particle once; every other array is the merged file's.
-// The ranks one at a time: rkpost holds one piece (and, while it reads the ghosts' values, one
-// neighbour's frame), never the whole part; each frame file is read once for its own piece and once
-// per neighbour's. particles: how many the case has; fold: the whole part's fold flags by global id
+// The ranks one at a time: rkpost holds one rank's subdomain, frame and piece (and, while it copies
+// the ghosts' values, one neighbouring rank's frame), not every rank's; each frame file is read once
+// for its own piece and once for each piece that needs points of it. particles: how many the case has; fold: the whole part's fold flags by global id
 // (empty: none written).
 void write_pieces(const std::string& case_dir, int f, int ranks, std::int64_t particles, bool solved,
                   const std::vector<Field>& fields, const rk::Scene& scene, const std::vector<std::int64_t>& fold,
