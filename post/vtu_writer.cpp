@@ -77,12 +77,19 @@ class Appended {
 
 void arrays(std::ostream& f, Appended& data, const std::vector<VtuArray>& list) {
   for (const auto& a : list) {
-    if (!a.i64.empty() || a.f64.empty()) data.array(f, "Int64", a.name, a.components, a.i64);
-    else data.array(f, "Float64", a.name, a.components, a.f64);
+    const std::string type = vtk_type(a);
+    if (type == "UInt8") data.array(f, "UInt8", a.name, a.components, a.u8);
+    else if (type == "Float64") data.array(f, "Float64", a.name, a.components, a.f64);
+    else data.array(f, "Int64", a.name, a.components, a.i64);
   }
 }
 
 }  // namespace
+
+const char* vtk_type(const VtuArray& a) {
+  if (!a.u8.empty()) return "UInt8";
+  return !a.i64.empty() || a.f64.empty() ? "Int64" : "Float64";
+}
 
 void VtuCells::add(const std::int64_t* points, int count, std::uint8_t type) {
   connectivity.insert(connectivity.end(), points, points + count);

@@ -14,8 +14,15 @@ struct VtuArray {
   std::string name;
   int components = 1;
   std::vector<double> f64;        // either f64 ...
-  std::vector<std::int64_t> i64;  // ... or i64 holds the values
+  std::vector<std::int64_t> i64;  // ... or i64 ...
+  std::vector<std::uint8_t> u8;   // ... or u8 holds the values
+  VtuArray(std::string name, int components, std::vector<double> f64 = {}, std::vector<std::int64_t> i64 = {},
+           std::vector<std::uint8_t> u8 = {})
+      : name(std::move(name)), components(components), f64(std::move(f64)), i64(std::move(i64)), u8(std::move(u8)) {}
 };
+// The VTK type an array is written as: UInt8 where u8 holds its values, Float64 where f64 does, else
+// Int64 (an array without values too).
+const char* vtk_type(const VtuArray& a);
 
 struct VtuCells {  // point indices of each cell, the end of each cell in them, the VTK cell types
   std::vector<std::int64_t> connectivity, offsets;

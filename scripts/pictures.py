@@ -15,13 +15,21 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 from paraview.simple import (ColorBy, GetColorTransferFunction, GetScalarBar, Render, ResetCamera,
-                             SaveScreenshot, Show, XMLUnstructuredGridReader, CreateView, Delete)
+                             SaveScreenshot, Show, XMLPartitionedUnstructuredGridReader, XMLUnstructuredGridReader, CreateView,
+                             Delete)
 
 
 def collection(case: Path):
     """(time, part, file) of every dataset of the .pvd, in its order."""
     root = ET.parse(case / "vtk" / "case.pvd").getroot()
     return [(float(d.get("timestep")), int(d.get("part")), case / "vtk" / d.get("file")) for d in root.iter("DataSet")]
+
+
+def part_reader(part_file):
+    """ParaView's reader of a frame of the part: one .vtu, or the pieces of a .pvtu (rkpost --partitioned)."""
+    if Path(part_file).suffix == ".pvtu":
+        return XMLPartitionedUnstructuredGridReader(FileName=[str(part_file)])
+    return XMLUnstructuredGridReader(FileName=[str(part_file)])
 
 
 def time_text(t: float, end: float) -> str:
@@ -32,7 +40,7 @@ def time_text(t: float, end: float) -> str:
 
 def value_range(part_file, name):
     """The smallest and largest value of a point field in a frame (None where the frame has no such field)."""
-    reader = XMLUnstructuredGridReader(FileName=[str(part_file)])
+    reader = part_reader(part_file)
     reader.UpdatePipeline()
     found = name in reader.PointData.keys()
     lo, hi = reader.PointData[name].GetRange() if found else (0.0, 0.0)
@@ -52,7 +60,7 @@ def render(part_file, die_files, out, colour, title, size, top=None, ranks=0, lo
         view.UseColorPaletteForBackground = 0
     except AttributeError:
         pass
-    part = XMLUnstructuredGridReader(FileName=[str(part_file)])
+    part = part_reader(part_file)
     shown = Show(part, view)
     shown.Representation = "Surface With Edges" if colour[0] == "CELLS" else "Surface"
     shown.EdgeColor = [0.2, 0.2, 0.2]
