@@ -181,7 +181,7 @@ double PartContact::pair_force(std::size_t s, double dt, double dt_min, double f
             const double apart = kApart * std::max(a[10], b[10]);
             if (!self_ || X2 <= apart * apart) continue;
           }
-          const double k_IJ = penalty_stiffness(penalty_scale_, std::min(a[11], b[11]), dt_min, dt);
+          const double k_IJ = penalty_stiffness(penalty_scale_, a[11] * b[11] / (a[11] + b[11]), dt_min, dt);
           Hit h{b[0], {}, 0.25 * k_IJ * (d - r) * (d - r), d - r};
           for (int i = 0; i < 3; ++i) h.f[i] = k_IJ * (d - r) * e[i] / r;
           hits_.push_back(h);

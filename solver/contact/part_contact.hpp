@@ -6,8 +6,8 @@
 //   f = k_IJ (d - r) e, r = |x_I - x_J|, e = (x_I - x_J) / r. No particle of one surface passes between
 //   the particles of the other; the faces stop 0.75 spacing apart (docs/decisions.md, "Contact of the
 //   part with itself and between bodies").
-// - k_IJ = s m / dt_min^2 (contact_laws.hpp's penalty, m the lighter particle's mass): contact never
-//   shortens the step.
+// - k_IJ = s mu_IJ / dt_min^2 (contact_laws.hpp's penalty with the pair's reduced mass mu_IJ): the pair's
+//   spring is as stiff for its two masses as a die's for one, so contact never shortens the step.
 // - Which pairs meet: each particle must lie in front of the other's surface, (x_J - x_I) . n_I > 0
 //   and (x_I - x_J) . n_J > 0, and their outward normals must face each other (more than 120 degrees
 //   apart): a thin region squeezed to a spacing has material between its faces, and a curved surface's

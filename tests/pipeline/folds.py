@@ -69,19 +69,18 @@ rkcase.check(all(not f.any() for _, f in (frames[k] for k in before)) and len(on
 rkcase.check(folds(cases[2])[1] == found, "the same lap on 2 ranks")
 
 # The slot's faces (z = 4 and z = 2 mm at t = 0, x past the root at 3 mm): the closest pair of their
-# particles over every frame. Measured 2026-12-02: 0.558 mm at the end, with the contact's spheres of
-# 0.75 of the particles' spacing (0.75 to 1.6 mm on this tetrahedral mesh); without the part's contact
-# with itself (contact.self=false) the faces pass through each other, 0.02 mm and closing. The bound
-# sits under the smallest sphere (0.56 mm) by the springs' depth.
+# particles over every frame. Measured 2026-12-02: 0.426 mm at the end, the contact's spheres of 0.75
+# mm pressed 0.32 mm by the die's 30 kN; without the part's contact with itself (contact.self=false) the
+# faces pass through each other, 0.05 mm and closing. The bound lies between the two.
 X0 = frames[0][0]
 upper = (abs(X0[:, 2] - 4e-3) < 1e-6) & (X0[:, 0] > 3e-3)
 lower = (abs(X0[:, 2] - 2e-3) < 1e-6) & (X0[:, 0] > 3e-3)
 closest = min(np.linalg.norm(x[upper][:, None, :] - x[lower][None, :, :], axis=2).min() for x, _ in frames)
 pairs = max(float(r["part_contacts"]) for r in rows)
-# the run's largest energy error past its start-up (solve.json; measured 2.0e-3, at 0.23 ms, before the
-# faces meet; 8.2e-5 at the end with 36 particles in contact)
+# the run's largest energy error past its start-up (solve.json; measured 2.7e-3, up to 25 particles in
+# contact)
 worst = json.loads((cases[1] / "solve.json").read_text())["max_energy_error"]
-rkcase.check(closest > 0.45e-3 and pairs > 0 and worst < 5e-3,
+rkcase.check(closest > 0.3e-3 and pairs > 0 and worst < 5e-3,
              f"the slot's faces stay apart: closest {1e3 * closest:.3f} mm, up to {pairs:.0f} particles in the part's "
              f"contact with itself, largest energy error {worst:.2e}")
 
