@@ -8,7 +8,7 @@
 // one fold; a fold is reported once, at the first frame it shows, with where it is and how many
 // particles it holds: a cluster holding a particle of a fold found at an earlier frame, or within
 // kSame spacings of one, is that fold growing.
-// The part's contact with itself (solver/contact/part_contact.hpp, on with dies) holds two such surfaces
+// The part's contact with itself (solver/contact/part_contact.hpp, `contact.self`) holds two such surfaces
 // about 0.75 of their particles' spacing apart, so the reach is one spacing: the first frame that
 // shows them there is the fold's time.
 #pragma once

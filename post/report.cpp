@@ -153,8 +153,9 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
   if (folds) {
     r << "\n## Folds and laps\n\nWhere two parts of the free surface that were more than " << num(FoldFinder::kApart)
       << " spacings apart at t = 0 came within " << num(FoldFinder::kReach)
-      << " spacing, facing each other (the particle field `fold` in ParaView shows them at every frame; the part's "
-         "contact with itself holds them about 0.75 spacing apart).\n\n";
+      << " spacing, facing each other (the particle field `fold` in ParaView shows them at every frame; with "
+         "`contact.self` the part's contact with itself holds them about 0.75 spacing apart, without it they may "
+         "pass through each other).\n\n";
     if (folds->empty()) r << "None found.\n";
     for (const auto& line : *folds) r << "- **" << line << "**\n";
   }

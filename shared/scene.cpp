@@ -710,7 +710,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
   {
     Section c = top.section("contact");
     s.contact.penalty_scale = c.number("penalty_scale", s.contact.penalty_scale, {0, 1, true, false});
-    s.contact.self = c.text("self", s.dies.empty() ? "false" : "true", {"true", "false"}) == "true";
+    s.contact.self = c.text("self", "false", {"true", "false"}) == "true";
     c.done();
   }
   {

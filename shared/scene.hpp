@@ -226,8 +226,8 @@ struct Scene {
 
   struct Contact {
     double penalty_scale = 0.25;  // k_I = scale * m_I / dt^2 (< 1: contact never limits the step)
-    // the part's contact with itself (a fold's faces; solver/contact/part_contact.hpp); default on
-    // with dies. Between bodies it is always on.
+    // the part's contact with itself (a fold's faces; solver/contact/part_contact.hpp): off unless
+    // asked (it costs every step). Between bodies it is always on.
     bool self = false;
   } contact;
 

@@ -19,7 +19,7 @@
 // - Parallel: each rank sends its owned surface particles to the ranks whose surface particles' box,
 //   grown by d, holds them. Each owner sums its own slave's pairs in the order of the
 //   partners' global ids, so the forces are the same bitwise on every partition.
-// On when the scene has dies or bodies (`contact.self`); otherwise nothing is computed or exchanged.
+// On with `contact.self` or bodies; otherwise nothing is computed or exchanged.
 #pragma once
 #include <cstdint>
 #include <limits>
