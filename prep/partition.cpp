@@ -160,7 +160,7 @@ nlohmann::json partition_report(const std::vector<Subdomain>& subs, std::size_t 
           {"imbalance", mean > 0 ? double(max_points) / mean : 1.0},
           {"overlap_fraction", particles ? double(sum_local - particles) / double(particles) : 0.0},
           {"values_exchanged_per_step", values},
-          {"bytes_exchanged_per_step", values * 16}};  // forces travel as 128-bit fixed point
+          {"bytes_exchanged_per_step", values * 8}};  // forces travel as 64-bit fixed point
 }
 
 }  // namespace rk
