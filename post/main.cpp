@@ -216,6 +216,28 @@ std::pair<rk::VtuCells, std::vector<std::int64_t>> read_cells(const std::string&
   return {cells, owner};
 }
 
+// With bodies (Scene::bodies): each particle's body by global id (0: the part), from the ranks' owned
+// particles' flags; empty without bodies.
+std::vector<std::int64_t> read_bodies(const std::string& case_dir, int ranks, const rk::Scene& scene, std::int64_t particles) {
+  std::vector<std::int64_t> body;
+  if (scene.bodies.empty()) return body;
+  body.assign(std::size_t(particles), 0);
+  for (int r = 0; r < ranks; ++r) {
+    const rk::Subdomain s = rk::read_subdomain(rk::subdomain_path(case_dir, r), r, ranks, scene.prep_hash);
+    for (std::size_t I = 0; I < s.particle_count(); ++I)
+      if (s.owner[I] == r && s.global_id[I] >= 0 && s.global_id[I] < particles) body[std::size_t(s.global_id[I])] = rk::body_of(s.flags[I]);
+  }
+  return body;
+}
+
+// The point array `body` of the particles `gid` (none without bodies).
+void add_bodies(const std::vector<std::int64_t>& body, const std::vector<std::int64_t>& gid, std::vector<rk::VtuArray>& data) {
+  if (body.empty()) return;
+  std::vector<std::int64_t> of(gid.size());
+  for (std::size_t k = 0; k < gid.size(); ++k) of[k] = body[std::size_t(gid[k])];
+  data.push_back({"body", 1, {}, std::move(of)});
+}
+
 // --partitioned: frame f as one .vtu piece per rank, CASE/vtk/frame_FFFFF/rank_RRRR.vtu, and
 // CASE/vtk/frame_FFFFF.pvtu listing them, for ParaView to read in parallel. A piece holds the rank's
 // owned particles, its own integration cells and the points of those cells that other ranks own,
@@ -227,7 +249,7 @@ std::pair<rk::VtuCells, std::vector<std::int64_t>> read_cells(const std::string&
 // (empty: none written).
 void write_pieces(const std::string& case_dir, int f, int ranks, std::int64_t particles, bool solved,
                   const std::vector<Field>& fields, const rk::Scene& scene, const std::vector<std::int64_t>& fold,
-                  bool compress) {
+                  const std::vector<std::int64_t>& body, bool compress) {
   char stem[32];
   std::snprintf(stem, sizeof stem, "frame_%05d", f);
   fs::create_directories(case_dir + "/vtk/" + stem);
@@ -299,6 +321,7 @@ void write_pieces(const std::string& case_dir, int f, int ranks, std::int64_t pa
     data.push_back({"global_id", 1, {}, piece.gid});
     for (std::size_t k = 0; k < fields.size(); ++k) data.push_back({fields[k].name, fields[k].components, std::move(piece.values[k]), {}});
     data.push_back({"rank", 1, {}, std::move(piece.rank)});
+    add_bodies(body, piece.gid, data);
     if (!fold.empty()) {
       std::vector<std::int64_t> on(n);
       for (std::size_t k = 0; k < n; ++k) on[k] = fold[std::size_t(piece.gid[k])];
@@ -441,6 +464,7 @@ int run(int argc, char** argv) {
   auto [cells, cell_rank] = !partitioned || find_folds ? read_cells(case_dir, ranks, scene.prep_hash)
                                                        : std::pair<rk::VtuCells, std::vector<std::int64_t>>();
   std::vector<rk::PvdEntry> index;
+  const std::vector<std::int64_t> body = read_bodies(case_dir, ranks, scene, prep["particles"].get<std::int64_t>());
   // the flow lines' particles, chosen on the positions at t = 0 (post/flow_lines.hpp)
   std::vector<rk::FlowLineSet> flow;
   std::optional<rk::FoldFinder> folding;  // the part's free surface, to find folds at each frame
@@ -483,7 +507,7 @@ int run(int argc, char** argv) {
       sort_by_global_id(fr, whole_fields, case_dir + " frame " + std::to_string(f));
       if (partitioned) {
         write_pieces(case_dir, f, ranks, prep["particles"].get<std::int64_t>(), solved, fields, scene,
-                     folding ? folding->find(fr.x, fr.time, folds) : std::vector<std::int64_t>(), !uncompressed);
+                     folding ? folding->find(fr.x, fr.time, folds) : std::vector<std::int64_t>(), body, !uncompressed);
       }
     } catch (const ForeignFrame&) {
       if (partitioned) fs::remove_all(vtk + stem);
@@ -500,6 +524,7 @@ int run(int argc, char** argv) {
       data.push_back({"global_id", 1, {}, fr.gid});
       for (std::size_t k = 0; k < fields.size(); ++k) data.push_back({fields[k].name, fields[k].components, fr.values[k], {}});
       data.push_back({"rank", 1, {}, fr.rank});
+      add_bodies(body, fr.gid, data);
       if (folding) data.push_back({"fold", 1, {}, folding->find(fr.x, fr.time, folds)});
       rk::write_vtu(vtk + name, fr.x, data, cells, {{"rank", 1, {}, cell_rank}}, !uncompressed);
     }

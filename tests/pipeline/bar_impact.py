@@ -63,6 +63,9 @@ frame = last_frame(case)
 X0 = meshio.read(case / "vtk" / "frame_00000.vtu").points
 target = X0[:, 2] < L + 0.4e-3
 vz = frame.point_data["velocity"][:, 2]
+body = frame.point_data["body"].ravel()
+rkcase.check((body[target] == 0).all() and (body[~target] == 1).all(),
+             f"the field `body`: 0 on the target's {target.sum()} particles (the part), 1 on the striker's {(~target).sum()}")
 rkcase.check(abs(-vz[target].mean() / V - 1) < 0.03 and abs(vz[~target].mean()) < 0.03 * V,
              f"after the contact: the target at {-vz[target].mean():.3f} m/s, the striker at {-vz[~target].mean():.3f} m/s")
 
