@@ -39,8 +39,7 @@ void build_shape_functions(Model& md, const Subdomain& sub, const LocalShapes& s
   md.nbr_offsets.assign(1, 0);
   for (std::size_t g = 0; g < md.m; ++g) {
     const std::size_t k0 = md.nbr.size();
-    const int body = md.body[std::size_t(sub.cell_nodes[std::size_t(sub.cell_node_offsets[std::size_t(sub.point_cell[g])])])];
-    const RkResult r = shapes.append(&md.point_X[3 * g], body, md.nbr, md.N, md.dN);  // ascending global id
+    const RkResult r = shapes.append(&md.point_X[3 * g], cell_body(md, std::size_t(sub.point_cell[g])), md.nbr, md.N, md.dN);  // ascending global id
     require_regular(md, r, &sub.point_X[3 * g], md.nbr.size() - k0, "integration point");
     md.nbr_offsets.push_back(std::int64_t(md.nbr.size()));
   }

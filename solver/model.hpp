@@ -104,6 +104,11 @@ struct Model {
   bool fbar = true;
 };
 
+// The body of cell c: its nodes' (a cell never spans two bodies).
+inline int cell_body(const Model& md, std::size_t c) {
+  return md.body[std::size_t(md.cell_nodes[std::size_t(md.cell_node_offsets[c])])];
+}
+
 // Builds the model from this rank's subdomain: neighbour search and shape functions at the points.
 // Throws rk::Error naming the point if a moment matrix is singular. `initial_X` (3 per local
 // particle): the t = 0 positions when sub.X is an updated reference configuration.

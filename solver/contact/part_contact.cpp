@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <cstdio>
-#include <cstdlib>
 
 #include "contact/contact_laws.hpp"
 #include "rk/kinematics.hpp"
@@ -14,25 +12,20 @@ namespace rk {
 namespace {
 
 constexpr double kApart = 1.0;    // of one body: more than this many spacings apart at t = 0
-constexpr double kFacing = -0.5;
+constexpr double kFacing = -0.5;  // n_I . n_J below this: the normals more than 120 degrees apart
 // d = kDiameter h (h: discretization.spacing): a particle of a square lattice's gaps is 0.71 h from its
 // corners, of a triangular one's 0.58 h, so a sphere of 0.75 h blocks both with room for the springs'
 // depth. One distance for every pair: two flat faces meet at once, not pair by pair as the particles'
-// own spacings would have them (a bar's end face of an O-grid mesh spans 0.5-0.9 h)
-constexpr double kDiameter = 0.75;  // n_I . n_J below this: the normals more than 120 degrees apart
+// own spacings would have them (a bar's end face of an O-grid mesh spans 0.68-0.87 h)
+constexpr double kDiameter = 0.75;
 
 double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 }  // namespace
 
 PartContact::PartContact(const Model& md, const Scene& scene, const Comm& comm)
-    : penalty_scale_(scene.contact.penalty_scale) {
-  self_ = scene.contact.self;
-  bool bodies = false;
-  for (std::size_t I = 0; I < md.n; ++I) bodies = bodies || md.body[I] != 0;
-  double flags = bodies ? 1.0 : 0.0;
-  comm.max(&flags, 1);
-  on_ = self_ || flags > 0;
+    : on_(scene.part_contact()), self_(scene.contact.self), penalty_scale_(scene.contact.penalty_scale),
+      d_(kDiameter * scene.discretization.spacing) {
   if (!on_) return;
   // the free faces: not on a symmetry plane (within 1e-9 of the coordinates' scale, their round-off)
   const std::size_t faces = md.surface_face_offsets.size() - 1;
@@ -43,7 +36,7 @@ PartContact::PartContact(const Model& md, const Scene& scene, const Comm& comm)
       for (auto k = md.surface_face_offsets[f]; k < md.surface_face_offsets[f + 1]; ++k) {
         const double* X = &md.Xr[3 * std::size_t(md.surface_face_nodes[std::size_t(k)])];
         const double gap = (X[0] - p.point[0]) * p.normal[0] + (X[1] - p.point[1]) * p.normal[1] + (X[2] - p.point[2]) * p.normal[2];
-        all = all && std::abs(gap) <= 1e-9 * (std::abs(X[0]) + std::abs(X[1]) + std::abs(X[2]) + md.spacing0[0]);
+        all = all && std::abs(gap) <= 1e-9 * (std::abs(X[0]) + std::abs(X[1]) + std::abs(X[2]) + d_);
       }
       on_plane = on_plane || all;
     }
@@ -56,7 +49,6 @@ PartContact::PartContact(const Model& md, const Scene& scene, const Comm& comm)
   OverlapExchange(md, 1).sum(count);
   for (std::size_t I = 0; I < md.n; ++I)
     if (md.owned[I] && count[I] > 0) slaves_.push_back(std::int32_t(I));
-  reach_ = kDiameter * scene.discretization.spacing;  // d
   N_max_.assign(slaves_.size(), 0.0);
   for (std::size_t s = 0; s < slaves_.size(); ++s) {
     const auto I = std::size_t(slaves_[s]);
@@ -119,7 +111,7 @@ void PartContact::exchange(const Comm& comm) {
       for (std::size_t s = 0; s < slaves_.size(); ++s) {
         const double* x = &mine_[kRecord * s + 1];
         bool inside = true;
-        for (int i = 0; i < 3; ++i) inside = inside && x[i] >= b[i] - reach_ && x[i] <= b[3 + i] + reach_;
+        for (int i = 0; i < 3; ++i) inside = inside && x[i] >= b[i] - d_ && x[i] <= b[3 + i] + d_;
         if (inside) send_.insert(send_.end(), &mine_[kRecord * s], &mine_[kRecord * (s + 1)]);
       }
     send_counts_[std::size_t(q)] = int(send_.size() - before);
@@ -128,7 +120,7 @@ void PartContact::exchange(const Comm& comm) {
   candidates_.insert(candidates_.end(), received_.begin(), received_.end());
 }
 
-// The candidates sorted by their bin (cubes of side reach_ over their box): a pair within reach lies in
+// The candidates sorted by their bin (cubes of side d over their box): a pair closer than d lies in
 // neighbouring bins. A sorted list rather than a grid: its size follows the surface, not the box.
 void PartContact::bin() {
   const std::size_t n = candidates_.size() / kRecord;
@@ -137,7 +129,7 @@ void PartContact::bin() {
   for (std::size_t c = 0; c < n; ++c)
     for (int i = 0; i < 3; ++i)
       lo_[i] = std::min(lo_[i], candidates_[kRecord * c + 1 + i]), hi[i] = std::max(hi[i], candidates_[kRecord * c + 1 + i]);
-  for (int i = 0; i < 3; ++i) dims_[i] = n > 0 ? std::floor((hi[i] - lo_[i]) / reach_) + 1 : 1;
+  for (int i = 0; i < 3; ++i) dims_[i] = n > 0 ? std::floor((hi[i] - lo_[i]) / d_) + 1 : 1;
   bins_.resize(n);
   for (std::size_t c = 0; c < n; ++c) {
     const double* x = &candidates_[kRecord * c + 1];
@@ -150,7 +142,7 @@ std::int64_t PartContact::key(const double x[3], int dx, int dy, int dz) const {
   const int d[3] = {dx, dy, dz};
   std::int64_t b[3];
   for (int i = 0; i < 3; ++i) {
-    b[i] = std::int64_t(std::floor((x[i] - lo_[i]) / reach_)) + d[i];
+    b[i] = std::int64_t(std::floor((x[i] - lo_[i]) / d_)) + d[i];
     if (b[i] < 0 || b[i] >= std::int64_t(dims_[i])) return -1;
   }
   return b[0] + std::int64_t(dims_[0]) * (b[1] + std::int64_t(dims_[1]) * b[2]);
@@ -171,7 +163,7 @@ double PartContact::pair_force(std::size_t s, double dt, double dt_min, double f
           if (b[0] == a[0]) continue;  // itself
           double e[3], r2 = 0;
           for (int i = 0; i < 3; ++i) e[i] = a[1 + i] - b[1 + i], r2 += e[i] * e[i];
-          const double d = reach_, r = std::sqrt(r2);
+          const double d = d_, r = std::sqrt(r2);
           if (!(r < d) || !(r > 0)) continue;
           // in front of each other's surfaces, the normals facing
           if (!(dot3(e, b + 4) > 0) || !(dot3(e, a + 4) < 0) || !(dot3(a + 4, b + 4) < kFacing)) continue;

@@ -39,7 +39,6 @@ namespace rk {
 class PartContact {
  public:
   PartContact(const Model& md, const Scene& scene, const Comm& comm);  // collective
-  bool empty() const { return !on_; }
 
   // The pairs' forces at t^n; dt the previous global step, dt_min the smallest so far (contact_laws.hpp).
   // Collective (one exchange of the surface particles near other ranks). Returns the largest force
@@ -53,14 +52,14 @@ class PartContact {
   void count_terms(const Model& md, std::vector<Fixed>& terms) const;
 
   // This step, over this rank's slaves: the slaves in contact, the springs' energy (each pair's half
-  // at each of its particles), the deepest d_IJ - r.
+  // at each of its particles), the deepest d - r.
   std::int64_t contacts() const { return std::int64_t(active_.size()); }
   double spring_energy() const { return spring_energy_; }
   double max_penetration() const { return max_penetration_; }
 
  private:
-  static constexpr int kRecord = 13;
-  static constexpr double kInf = std::numeric_limits<double>::infinity();  // global id, x[3], n[3], X0[3], h, m, body
+  static constexpr int kRecord = 13;  // global id, x[3], n[3], X0[3], h, m, body
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
   void normals(const Model& md, const State& st);
   void pack(const Model& md, const State& st);
   void exchange(const Comm& comm);
@@ -70,7 +69,7 @@ class PartContact {
   double pair_force(std::size_t s, double dt, double dt_min, double f[3]);
 
   bool on_ = false, self_ = false;
-  double penalty_scale_ = 0.25, reach_ = 0;
+  double penalty_scale_ = 0.25, d_ = 0;  // d: the spheres' diameter
   std::vector<std::int32_t> slaves_;      // owned particles with a free boundary face
   std::vector<std::int32_t> free_faces_;  // the rank's boundary faces off the symmetry planes
   std::vector<Fixed> normal_sum_;         // per local particle, 3: its free faces' unit normals

@@ -83,7 +83,7 @@ std::vector<double> conditioned_spacing(const Model& md, const Scene& scene, con
   std::vector<std::uint8_t> point_body(md.m);  // a point's body: its cell's nodes'
   for (std::size_t c = 0; c < md.cells; ++c)
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g)
-      point_body[std::size_t(g)] = md.body[std::size_t(md.cell_nodes[std::size_t(md.cell_node_offsets[c])])];
+      point_body[std::size_t(g)] = std::uint8_t(cell_body(md, c));
   for (std::size_t g = 0; g < md.m; ++g) {
     found.clear();
     grid.covering(&md.point_X[3 * g], found);

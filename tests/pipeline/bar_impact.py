@@ -41,6 +41,7 @@ case = runs[1]
 rows = list(csv.DictReader(open(case / "history.csv")))
 tracks = list(csv.DictReader(open(case / "tracks.csv")))
 touching = [float(r["time"]) for r in rows if float(r["part_contacts"]) > 0]
+rkcase.check(len(touching) > 0, f"the bars meet: {len(touching)} history rows with particles in contact")
 t0, t1 = touching[0], touching[-1]
 
 # The wave reaches the target's middle L / 2 / c0 after the contact starts and the unloading wave from its
