@@ -82,7 +82,9 @@ def machine_limit(machine, cost, points):
 
 # The paper-resolution bar with the default integration and with the two cheaper ones of the tradeoffs study
 PAPER_SETTINGS = [("default (Gauss 2, F-bar)", []), ("fast pick (Gauss 1)", ["discretization.gauss_order=1"]),
-                 ("nodal integration (SCNI)", ["discretization.integration=nodal"])]
+                 ("nodal integration (SCNI)", ["discretization.integration=nodal"]),
+                 ("default, step from the highest frequency", ["time.stable_step=frequency"]),
+                 ("Gauss 1, step from the highest frequency", ["discretization.gauss_order=1", "time.stable_step=frequency"])]
 TAYLOR_REF = {"r_f_mm": 7.22, "L_f_mm": 21.45}  # converged FE (docs/studies.md)
 
 

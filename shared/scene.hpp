@@ -250,6 +250,9 @@ struct Scene {
   struct Time {
     double end = 0;                // s
     double cfl = 0.9;              // fraction of the stable step (default 0.5 when the scene has dies)
+    // the stable step's estimate (solver/time_step.hpp): "cells" from each cell's edge and its points'
+    // stretch, or "frequency" from the highest frequency of the discrete system (solver/highest_frequency.hpp)
+    std::string stable_step = "cells";
     double output_interval = 0;    // s
     double mass_scaling_dt = 0;    // s; > 0: density scaled so that the stable step is at least this
   } time;

@@ -18,6 +18,7 @@
 #include "energy.hpp"
 #include "error.hpp"
 #include "health.hpp"
+#include "highest_frequency.hpp"
 #include "io/checkpoint.hpp"
 #include "io/history.hpp"
 #include "io/point_tracks.hpp"
@@ -106,6 +107,7 @@ class Simulation {
   std::unique_ptr<History> history_;
   std::unique_ptr<PointTracks> tracks_;
   std::unique_ptr<HealthChecks> health_;
+  std::unique_ptr<HighestFrequency> frequency_;  // with time.stable_step = frequency only
   std::unique_ptr<Progress> progress_;
   std::optional<OverlapExchange> exchange_;
   WriteLastFrame last_frame_;
@@ -199,6 +201,7 @@ void Simulation::reference_update() {
   const Projection project = [&](std::size_t I, double* x) { ebc_->project(md_, I, st_.t, x); };
   collectively(comm_, [&] { return update_reference(md_, st_, scene_, comm_, project), 0; });
   rebind();
+  st_.step_ratio = 0;  // the stable step's frequency afresh on the new shapes (the mode carried over)
   if (heat_) heat_->reproject(md_, st_, comm_);  // the heat content kept on the new shapes
   clock_.dt_penalty = -1;  // the new configuration's steps set the penalty afresh (contact_laws.hpp)
   timer_.stop(kReferenceUpdate);
@@ -256,6 +259,7 @@ void Simulation::time_step() {
   for (std::size_t g = 0; g < md_.m; ++g) bound = std::max(bound, st_.force_bound[g]);
   healthy_ = stress_.ok && std::isfinite(bound);
   stable_ = stable_time_step(md_, st_, scene_.time.cfl);
+  if (frequency_) stable_.dt *= frequency_->step_ratio(md_, st_, comm_);  // the same on every rank
   const double update_strain = scene_.reference_updates.strain;
   limits_.dt = stable_.dt;
   limits_.force_bound = bound;
@@ -427,6 +431,7 @@ void Simulation::rebind() {
   results_ = collectively(
       comm_, [&] { return std::make_unique<ResultWriter>(opt_.case_dir, md_, scene_.prep_hash, results_->frames()); });
   v_old_.assign(st_.v.size(), 0.0);
+  if (frequency_) frequency_ = collectively(comm_, [&] { return std::make_unique<HighestFrequency>(md_, comm_); });
 }
 
 Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
@@ -478,6 +483,17 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     st_.surface_heat.assign(md_.n, 0.0);
   compute_deformation_gradient(md_, st_);
   double dt0 = stable_time_step(md_, st_, scene_.time.cfl).dt;
+  if (scene_.time.stable_step == "frequency") {  // (the mass scaling below then sized on it)
+    frequency_ = collectively(comm, [&] { return std::make_unique<HighestFrequency>(md_, comm); });
+    dt0 *= frequency_->step_ratio(md_, st_, comm);
+    if (scene_.time.cfl > 1) {
+      char text[300];
+      std::snprintf(text, sizeof text, "time.cfl = %g with time.stable_step = frequency is past the stability limit "
+                    "2 / omega_max: the run will grow unstable and stop; 0.9 is the default", scene_.time.cfl);
+      start_warnings_.push_back(text);
+      if (comm.rank() == 0) std::fprintf(stderr, "rksolve: warning: %s\n", text);
+    }
+  }
   comm.min(&dt0, 1);
   if (scene_.time.mass_scaling_dt > dt0) {  // quasi-static forming: scale the density up
     const double factor = std::pow(scene_.time.mass_scaling_dt / dt0, 2);

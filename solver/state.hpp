@@ -73,6 +73,11 @@ struct State {
   std::vector<double> damage;
   double thermal_work = 0;
   std::int64_t contacts = 0;
+  // time.stable_step = frequency (highest_frequency.hpp; empty otherwise): the power iteration's vector
+  // (3 per particle, towards the highest mode of M^-1 K), and the ratio of its step 2 / omega_max to
+  // the cells' estimate at its last iteration (0: none since the start or the last reference update)
+  std::vector<double> stiff_mode;
+  double step_ratio = 0;
   // the rams of the dies driven by their press (contact/presses.hpp), in die order; the same on every rank
   struct Ram {
     double stroke = 0, speed = 0;  // s^n (m) and v^{n-1/2} (m/s) along the die's direction

@@ -35,7 +35,7 @@ double gershgorin_floor(const double F[9]) {
   return std::min({c(0, 0) - xy - zx, c(1, 1) - xy - yz, c(2, 2) - yz - zx});
 }
 
-StableStep stable_time_step(const Model& md, const State& st, double cfl) {
+StableStep stable_time_step(const Model& md, const State& st, double cfl, bool damped) {
   double dt = std::numeric_limits<double>::infinity();
   std::size_t which = 0;
   for (std::size_t c = 0; c < md.cells; ++c) {
@@ -44,7 +44,7 @@ StableStep stable_time_step(const Model& md, const State& st, double cfl) {
     const double scale0 = md.cell_h0[c] / std::sqrt(c2);  // dt of the cell = scale * stretch
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
       const double* F = &st.F[9 * std::size_t(g)];
-      const double scale = st.dt_factor.empty() ? scale0 : scale0 * st.dt_factor[std::size_t(g)];  // bulk viscosity
+      const double scale = st.dt_factor.empty() || !damped ? scale0 : scale0 * st.dt_factor[std::size_t(g)];  // bulk viscosity
       // Cheap lower bounds first: lambda_min(C) >= det C / (lambda_mid lambda_max) >= 4 J^2 / (tr C)^2,
       // and Gershgorin's min_i (C_ii - sum_j!=i |C_ij|), the tight one near F = I (after a reference
       // update, where the first leaves most points to the eigenvalue formula's acos and cos)

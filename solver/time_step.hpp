@@ -19,7 +19,8 @@ struct StableStep {
   std::size_t cell;  // the cell that sets it
 };
 
-StableStep stable_time_step(const Model& md, const State& st, double cfl);
+// `damped`: with bulk viscosity's factors (the step); without them, the undamped estimate.
+StableStep stable_time_step(const Model& md, const State& st, double cfl, bool damped = true);
 
 // Smallest principal stretch of F: sqrt of the smallest eigenvalue of C = F^T F (closed form);
 // det F as the kinematics computed it (State::J).

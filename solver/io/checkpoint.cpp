@@ -59,6 +59,10 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
       f.write("points/J_last", st.J_last);
     }
     if (!st.temperature.empty()) f.write("points/temperature", st.temperature);
+    if (!st.stiff_mode.empty()) {  // time.stable_step = frequency
+      f.write("particles/stiff_mode", st.stiff_mode, 3);
+      f.write("clock/step_ratio", std::vector<double>{st.step_ratio});
+    }
     if (!st.stretch_last.empty()) f.write("points/stretch_last", st.stretch_last);
     if (!st.damage.empty()) f.write("points/damage", st.damage, kDamageCriteria);
     if (!st.plastic_rate.empty()) f.write("points/plastic_rate", st.plastic_rate);
@@ -92,6 +96,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
                (st.rams.empty() || check.read<double>("dies/rams", State::kRamValues) == ram_rows(st)) &&
                (contact.touched().empty() || check.read<std::int64_t>("dies/touched") == contact.touched()) &&
                (st.temperature.empty() || check.read<double>("points/temperature") == st.temperature) &&
+               (st.stiff_mode.empty() || check.read<double>("particles/stiff_mode", 3) == st.stiff_mode) &&
                (st.stretch_last.empty() || check.read<double>("points/stretch_last") == st.stretch_last) &&
                (st.damage.empty() || check.read<double>("points/damage", kDamageCriteria) == st.damage) &&
                (st.plastic_rate.empty() || check.read<double>("points/plastic_rate") == st.plastic_rate) &&
@@ -277,6 +282,17 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
       if (const int j = written[k]; j >= 0) dies[k].heat = die_heat[std::size_t(j)];
   }
   const auto u = f.read<double>("particles/u", 3), v = f.read<double>("particles/v", 3);
+  // time.stable_step = frequency: the power iteration's vector and ratio (a stage, or a checkpoint
+  // without them, starts them afresh)
+  std::vector<double> mode;
+  if (!st.stiff_mode.empty() && !stage && f.exists("particles/stiff_mode")) {
+    mode = f.read<double>("particles/stiff_mode", 3);
+    st.step_ratio = f.read<double>("clock/step_ratio").at(0);
+    if (mode.size() != u.size()) throw Error(path + ": checkpoint datasets disagree with each other's counts");
+  } else {
+    st.stiff_mode.clear();
+  }
+  if (!mode.empty() && updates == 0) st.stiff_mode = mode;
   if (updates == 0) {
     st.u = u, st.v = v;
     if (!T.empty()) st.particle_temperature = T, st.surface_heat = friction;
@@ -303,6 +319,8 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
     if (found) {
       for (int i = 0; i < 3; ++i) st.u[3 * I + i] = u[3 * k + i], st.v[3 * I + i] = v[3 * k + i], st.u_ref[3 * I + i] = u_ref[3 * k + i];
       if (!T.empty()) st.particle_temperature[I] = T[k], st.surface_heat[I] = friction[k];
+      if (!mode.empty())
+        for (int i = 0; i < 3; ++i) st.stiff_mode[3 * I + i] = mode[3 * k + i];
     }
   }
   st.reference_updates = updates;

@@ -14,8 +14,9 @@ namespace rk {
 namespace {
 
 // What every rank learns about each owned particle: global id, X (t = 0), d, v, d^ref, volume,
-// spacing at t = 0, flags, owner, temperature coefficient and friction heat (with conduction).
-enum { kGid, kX = 1, kU = 4, kV = 7, kRef = 10, kVolume = 13, kSpacing0, kFlags, kOwner, kTemperature, kSurfaceHeat, kRecord };
+// spacing at t = 0, flags, owner, temperature coefficient and friction heat (with conduction), the
+// stable step's mode (with time.stable_step = frequency).
+enum { kGid, kX = 1, kU = 4, kV = 7, kRef = 10, kVolume = 13, kSpacing0, kFlags, kOwner, kTemperature, kSurfaceHeat, kMode, kRecord = kMode + 3 };
 
 std::vector<double> owned_records(const Model& md, const State& st) {
   std::vector<double> out;
@@ -34,6 +35,7 @@ std::vector<double> owned_records(const Model& md, const State& st) {
     r[kOwner] = md.rank;
     r[kTemperature] = st.particle_temperature.empty() ? 0.0 : st.particle_temperature[I];
     r[kSurfaceHeat] = st.surface_heat.empty() ? 0.0 : st.surface_heat[I];
+    for (int i = 0; i < 3; ++i) r[kMode + i] = st.stiff_mode.empty() ? 0.0 : st.stiff_mode[3 * I + i];
     out.insert(out.end(), r, r + kRecord);
   }
   return out;
@@ -250,6 +252,11 @@ void rebuild_on_reference(Model& md, State& st, const Scene& scene, const Comm& 
       const double* r = record[local[k]];
       st.u[3 * k + i] = r[kU + i], st.v[3 * k + i] = r[kV + i], st.u_ref[3 * k + i] = r[kRef + i];
     }
+  if (!st.stiff_mode.empty()) {
+    st.stiff_mode.resize(3 * next.n);
+    for (std::size_t k = 0; k < next.n; ++k)
+      for (int i = 0; i < 3; ++i) st.stiff_mode[3 * k + i] = record[local[k]][kMode + i];
+  }
   if (!st.particle_temperature.empty()) {
     st.particle_temperature.resize(next.n);
     st.surface_heat.assign(next.n, 0.0);
