@@ -31,8 +31,10 @@ HistoryWriter::HistoryWriter(const std::string& path, const std::vector<std::str
     if (std::getline(in, line) && line != header)  // rows of another layout would land under the wrong names
       throw Error(path + ": written with other columns (\"" + line.substr(0, 80) +
                   "...\"); move it away to restart into a new history");
+    // a row's time is printed to 10 digits: the row at the checkpoint's own time can read up to 5e-10
+    // of it below, and the restart writes that row again
     while (std::getline(in, line))
-      if (std::strtod(line.c_str(), nullptr) < resume_time) keep.push_back(line);
+      if (std::strtod(line.c_str(), nullptr) < resume_time * (1 - 1e-9)) keep.push_back(line);
   }
   path_ = path;
   file_ = std::fopen(path.c_str(), "w");
