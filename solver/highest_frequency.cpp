@@ -86,17 +86,8 @@ void HighestFrequency::apply(const Model& md, const State& st, const Comm& comm)
   comm.max(&bound, 1);
   const FixedScale scale = FixedScale::for_bound(bound, headroom_);
   std::fill(partial_.begin(), partial_.end(), Fixed(0));
-  for (std::size_t g = 0; g < md.m; ++g) {
-    const double ws = md.weight[g] * scale.to_fixed;
-    const double* P = &P_[9 * g];
-    const Row3 column[3] = {make_row3(P[0], P[3], P[6]), make_row3(P[1], P[4], P[7]), make_row3(P[2], P[5], P[8])};
-    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
-      const Row3 d = load_row3(&md.dN[3 * std::size_t(k)]);
-      const FixedRow3 f = truncate_row(ws * (column[0] * d[0] + column[1] * d[1] + column[2] * d[2]));
-      Fixed* acc = &partial_[3 * std::size_t(md.nbr[k])];
-      for (int i = 0; i < 3; ++i) acc[i] += f[i];
-    }
-  }
+  add_point_forces(md, P_, partial_, scale, md.boundary_points);
+  add_point_forces(md, P_, partial_, scale, md.interior_points);
   exchange_.sum(partial_);
   for (std::size_t k = 0; k < Kv_.size(); ++k) Kv_[k] = scale.real(partial_[k]);
 }

@@ -33,19 +33,24 @@ ForceTerms force_terms(const Model& md, const DieContact& dies, const PartContac
 
 void clear_internal_force(State& st) { std::fill(st.partial.begin(), st.partial.end(), Fixed(0)); }
 
-void add_internal_force(const Model& md, State& st, const FixedScale& scale, std::span<const std::int32_t> points) {
+void add_point_forces(const Model& md, const std::vector<double>& P_all, std::vector<Fixed>& partial,
+                      const FixedScale& scale, std::span<const std::int32_t> points) {
   for (const std::int32_t g : points) {
     // w times the fixed-point scale, a power of two: ws x rounds exactly as scale.fixed(w x) does
     const double ws = md.weight[g] * scale.to_fixed;
-    const double* P = &st.P[9 * std::size_t(g)];
+    const double* P = &P_all[9 * std::size_t(g)];
     const Row3 column[3] = {make_row3(P[0], P[3], P[6]), make_row3(P[1], P[4], P[7]), make_row3(P[2], P[5], P[8])};
     for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
       const Row3 d = load_row3(&md.dN[3 * std::size_t(k)]);
       const FixedRow3 f = truncate_row(ws * (column[0] * d[0] + column[1] * d[1] + column[2] * d[2]));
-      Fixed* acc = &st.partial[3 * std::size_t(md.nbr[k])];
+      Fixed* acc = &partial[3 * std::size_t(md.nbr[k])];
       for (int i = 0; i < 3; ++i) acc[i] += f[i];
     }
   }
+}
+
+void add_internal_force(const Model& md, State& st, const FixedScale& scale, std::span<const std::int32_t> points) {
+  add_point_forces(md, st.P, st.partial, scale, points);
 }
 
 }  // namespace rk
