@@ -63,7 +63,10 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
       f.write("particles/stiff_mode", st.stiff_mode, 3);
       f.write("clock/step_ratio", std::vector<double>{st.step_ratio});
     }
-    if (!st.stretch_last.empty()) f.write("points/stretch_last", st.stretch_last);
+    if (!st.stretch_last.empty()) {  // a thermal strain: its work over the next step takes the stress before it
+      f.write("points/stretch_last", st.stretch_last);
+      f.write("points/tau", st.tau, 6);
+    }
     if (!st.damage.empty()) f.write("points/damage", st.damage, kDamageCriteria);
     if (!st.plastic_rate.empty()) f.write("points/plastic_rate", st.plastic_rate);
     if (!st.particle_temperature.empty()) {  // conduction (thermal/heat_transfer.hpp)
@@ -97,7 +100,8 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
                (contact.touched().empty() || check.read<std::int64_t>("dies/touched") == contact.touched()) &&
                (st.temperature.empty() || check.read<double>("points/temperature") == st.temperature) &&
                (st.stiff_mode.empty() || check.read<double>("particles/stiff_mode", 3) == st.stiff_mode) &&
-               (st.stretch_last.empty() || check.read<double>("points/stretch_last") == st.stretch_last) &&
+               (st.stretch_last.empty() || (check.read<double>("points/stretch_last") == st.stretch_last &&
+                                            check.read<double>("points/tau", 6) == st.tau)) &&
                (st.damage.empty() || check.read<double>("points/damage", kDamageCriteria) == st.damage) &&
                (st.plastic_rate.empty() || check.read<double>("points/plastic_rate") == st.plastic_rate) &&
                (st.particle_temperature.empty() || (check.read<double>("particles/temperature") == st.particle_temperature &&
@@ -248,7 +252,11 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
     if (!f.exists("points/stretch_last"))
       throw Error(path + ": the checkpoint holds no thermal stretches (written without a thermal strain); restart with the same scene");
     st.stretch_last = f.read<double>("points/stretch_last");
-    if (st.stretch_last.size() != md.m) throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
+    if (!f.exists("points/tau"))
+      throw Error(path + ": the checkpoint holds no stresses for the thermal strain's work (an older rksolve); re-run from the start");
+    st.tau = f.read<double>("points/tau", 6);
+    if (st.stretch_last.size() != md.m || st.tau.size() != 6 * md.m)
+      throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
   }
   if (!st.damage.empty()) {
     if (!f.exists("points/damage"))
