@@ -1,10 +1,10 @@
 """Every process feature at once (geometry/upsetting/scene_combined.yaml: hot C45 with conduction, die
-conductance, convection, radiation and thermal expansion; a crank press with shear friction; the three
-damage criteria; the part's contact with itself; reference updates; tracked points; a flow-line
-plane; the die fill), 0.04 s of the crank's stroke at 2.5 mm spacing (185 particles, 4 165 steps,
-11 reference updates, measured 2026-12-03):
-- every feature is at work: the die moved and pushes, the temperature spread, each damage criterion
-  grew, the die is partly filled, the part's reference was updated;
+conductance, convection, radiation and thermal expansion; a crank press with shear friction; a second
+body pushed against the billet; the three damage criteria; the part's contact with itself; reference
+updates; tracked points; a flow-line plane; the die fill), 0.04 s of the crank's stroke at 2.5 mm
+spacing (185 + 64 particles, 4 163 steps, measured 2026-12-03):
+- every feature is at work: the die moved and pushes, the bodies touch, the temperature spread, each
+  damage criterion grew, the die is partly filled, the part's reference was updated;
 - 3 ranks give bitwise the fields of every frame (positions, velocities, temperatures, damage,
   stresses), the tracks and the die's fill and load fields of 1 rank;
 - a run killed after its checkpoint at step 3000 (past several reference updates) and restarted ends
@@ -58,6 +58,9 @@ rkcase.check(solve["reference_updates"] >= 5 and float(last["die.stroke"]) > 2e-
              and float(last["die.filled"]) > 0.1,
              f"at work: {solve['reference_updates']} reference updates, the die {1e3 * float(last['die.stroke']):.2f} mm "
              f"down at {float(last['die.force']) / 1e3:.1f} kN, {100 * float(last['die.filled']):.1f} % of it filled")
+rows = list(csv.DictReader(open(one / "history.csv")))
+touching = sum(float(r["part_contacts"]) > 0 for r in rows)
+rkcase.check(touching > len(rows) // 2, f"the insert against the billet: particles in contact in {touching} of {len(rows)} rows")
 rkcase.check(float(last["temperature_max"]) - float(last["temperature_min"]) > 5
              and all(float(last[f"damage_{c}_max"]) > 0.01 for c in ("cockcroft_latham", "brozzo", "oyane")),
              f"temperatures {float(last['temperature_min']):.1f}-{float(last['temperature_max']):.1f} K, damage "
