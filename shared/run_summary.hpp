@@ -39,6 +39,8 @@ struct RunSummary {
   double max_ebc_error_m = 0;
   double initial_kinetic_energy = 0, viscous_work = 0;  // J
   double mass_scaling = 1;
+  std::string stable_step;  // time.stable_step
+  double step_ratio = 0;    // with `frequency`: its step 2 / omega_max over the cells' estimate, at the end
   double max_kinetic_internal_ratio = 0;  // past 5 % of the run: a quasi-static run keeps it small
   std::int64_t reference_updates = 0, frames = 0;
   std::int64_t thermal_updates = 0;  // with heat conduction: the thermal updates of the run

@@ -117,6 +117,8 @@ RunSummary summarize(const Scene& scene, const Model& md, const State& st, const
   s.initial_kinetic_energy = clock.kinetic0;
   s.viscous_work = sums[5];
   s.mass_scaling = md.mass_scaling;
+  s.stable_step = scene.time.stable_step;
+  s.step_ratio = st.step_ratio;
   s.max_kinetic_internal_ratio = clock.max_ke_ratio;
   s.reference_updates = st.reference_updates;
   s.thermal_updates = st.thermal_updates, s.thermal_step_s = st.thermal_dt;

@@ -75,6 +75,10 @@ rkcase.check(abs(m["footprint_radius_mm"] - 7.116) < 0.01 and abs(m["final_lengt
              f"Taylor bar: r_f {m['footprint_radius_mm']:.4f} mm, L_f {m['final_length_mm']:.4f} mm "
              "(the cells' estimate: 7.116, 21.473)")
 rkcase.check(s["steps"] < 4400, f"Taylor bar: {s['steps']} steps (the cells' estimate: 10 705)")
+# solve.json says which estimate ran and how far the cells' lay below it at the end (2.73 measured with
+# the probe of 2026-12-03 on the cells' run at 76-79 us)
+rkcase.check(s["stable_step"] == "frequency" and 2.5 < s["step_ratio"] < 3.0,
+             f"solve.json: stable_step {s['stable_step']}, step_ratio {s['step_ratio']:.3f}")
 
 
 # --- 2 ranks and a restart, bitwise
