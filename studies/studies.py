@@ -116,6 +116,8 @@ def tradeoffs():
                   ("nodal integration", ["discretization.integration=nodal"], []),
                   ("ebc transformation", ["discretization.ebc_method=transformation"], [])]
         knobs += [(f"cfl {c}", [], [f"time.cfl={c}"]) for c in (0.1, 0.25, 0.5, 0.75)]
+        # the stable step from the highest frequency (time.stable_step), at 0.9 and 0.6 of its limit
+        knobs += [(f"frequency step cfl {c}", [], ["time.stable_step=frequency", f"time.cfl={c}"]) for c in (0.9, 0.6)]
     cases = [Case("taylor_" + k.replace(" ", "_"), **taylor(h, end, *s, prep=p), label=k) for k, p, s in knobs]
     for k in ([0.25] if SMOKE else [0.05, 0.1, 0.25, 0.5, 1.0]):
         solve = ["time.end=1.1e-3", "time.output_interval=1.1e-3"] if SMOKE else []
