@@ -28,8 +28,7 @@ void inverse(const double F[9], double J, double Fi[9]) {
 }  // namespace
 
 HighestFrequency::HighestFrequency(const Model& md, const Comm& comm)
-    : exchange_(md, 3), headroom_(force_headroom(md, 1, 0, comm)), Kv_(3 * md.n), P_(9 * md.m),
-      theta_(md.cells), partial_(3 * md.n) {
+    : exchange_(md, 3), headroom_(force_headroom(md, 1, 0, comm)), Kv_(3 * md.n), P_(9 * md.m), partial_(3 * md.n) {
   double owned = 0;
   for (std::size_t I = 0; I < md.n; ++I) owned += md.owned[I];
   comm.sum(&owned, 1);
@@ -40,34 +39,29 @@ HighestFrequency::HighestFrequency(const Model& md, const Comm& comm)
 // theta = tr grad_x v (its cell's weighted mean with F-bar), J = det F (the cell's mean with F-bar)
 void HighestFrequency::apply(const Model& md, const State& st, const Comm& comm) {
   const std::vector<double>& v = st.stiff_mode;
-  for (std::size_t g = 0; g < md.m; ++g) {
-    Row3 row[3] = {make_row3(0, 0, 0), make_row3(0, 0, 0), make_row3(0, 0, 0)};  // grad_X v
-    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
-      const std::size_t J = 3 * std::size_t(md.nbr[k]);
-      const Row3 d = load_row3(&md.dN[3 * std::size_t(k)]);
-      for (int i = 0; i < 3; ++i) row[i] += v[J + i] * d;
-    }
-    double Fi[9];
-    inverse(&st.F[9 * g], st.J[g], Fi);
-    double* L = &P_[9 * g];  // grad_x v = grad_X v F^-1, kept here until the stress replaces it
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) L[3 * i + j] = row[i][0] * Fi[j] + row[i][1] * Fi[3 + j] + row[i][2] * Fi[6 + j];
-  }
-  for (std::size_t c = 0; c < md.cells; ++c) {
-    double wt = 0, w = 0;
-    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
-      const double* L = &P_[9 * std::size_t(g)];
-      wt += md.weight[g] * (L[0] + L[4] + L[8]), w += md.weight[g];
-    }
-    theta_[c] = w > 0 ? wt / w : 0.0;
-  }
   const double K = md.material.bulk, G = md.material.shear;
   double bound = 0;
-  for (std::size_t c = 0; c < md.cells; ++c)
-    for (auto gg = md.cell_points[c]; gg < md.cell_points[c + 1]; ++gg) {
-      const std::size_t g = std::size_t(gg);
+  for (std::size_t c = 0; c < md.cells; ++c) {  // (every point lies in a cell: model.cpp)
+    const auto g0 = std::size_t(md.cell_points[c]), g1 = std::size_t(md.cell_points[c + 1]);
+    double wt = 0, w = 0;
+    for (auto g = g0; g < g1; ++g) {
+      Row3 row[3] = {make_row3(0, 0, 0), make_row3(0, 0, 0), make_row3(0, 0, 0)};  // grad_X v
+      for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
+        const std::size_t J = 3 * std::size_t(md.nbr[k]);
+        const Row3 d = load_row3(&md.dN[3 * std::size_t(k)]);
+        for (int i = 0; i < 3; ++i) row[i] += v[J + i] * d;
+      }
+      double Fi[9];
+      inverse(&st.F[9 * g], st.J[g], Fi);
+      double* L = &P_[9 * g];  // grad_x v = grad_X v F^-1, kept here until the stress replaces it
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) L[3 * i + j] = row[i][0] * Fi[j] + row[i][1] * Fi[3 + j] + row[i][2] * Fi[6 + j];
+      wt += md.weight[g] * (L[0] + L[4] + L[8]), w += md.weight[g];
+    }
+    const double theta_cell = w > 0 ? wt / w : 0.0;  // the F-bar mean of tr grad_x v
+    for (auto g = g0; g < g1; ++g) {
       double* L = &P_[9 * g];
-      const double tr = L[0] + L[4] + L[8], theta = md.fbar ? theta_[c] : tr;
+      const double tr = L[0] + L[4] + L[8], theta = md.fbar ? theta_cell : tr;
       const double J = md.fbar ? st.cell_J[c] : st.J[g];
       double s[9];
       for (int i = 0; i < 3; ++i)
@@ -83,6 +77,7 @@ void HighestFrequency::apply(const Model& md, const State& st, const Comm& comm)
         }
       bound = std::max(bound, md.weight[g] * std::sqrt(norm2) * md.dN_max[g]);
     }
+  }
   comm.max(&bound, 1);
   const FixedScale scale = FixedScale::for_bound(bound, headroom_);
   std::fill(partial_.begin(), partial_.end(), Fixed(0));

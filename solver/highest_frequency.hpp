@@ -32,7 +32,7 @@ class HighestFrequency {
 
   OverlapExchange exchange_;
   int headroom_ = 0, sum_headroom_ = 0;
-  std::vector<double> Kv_, P_, theta_;
+  std::vector<double> Kv_, P_;
   std::vector<Fixed> partial_;
 };
 

@@ -99,7 +99,8 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
                (st.rams.empty() || check.read<double>("dies/rams", State::kRamValues) == ram_rows(st)) &&
                (contact.touched().empty() || check.read<std::int64_t>("dies/touched") == contact.touched()) &&
                (st.temperature.empty() || check.read<double>("points/temperature") == st.temperature) &&
-               (st.stiff_mode.empty() || check.read<double>("particles/stiff_mode", 3) == st.stiff_mode) &&
+               (st.stiff_mode.empty() || (check.read<double>("particles/stiff_mode", 3) == st.stiff_mode &&
+                                          check.read<double>("clock/step_ratio") == std::vector<double>{st.step_ratio})) &&
                (st.stretch_last.empty() || (check.read<double>("points/stretch_last") == st.stretch_last &&
                                             check.read<double>("points/tau", 6) == st.tau)) &&
                (st.damage.empty() || check.read<double>("points/damage", kDamageCriteria) == st.damage) &&
@@ -300,9 +301,9 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
   } else {
     st.stiff_mode.clear();
   }
-  if (!mode.empty() && updates == 0) st.stiff_mode = mode;
   if (updates == 0) {
     st.u = u, st.v = v;
+    if (!mode.empty()) st.stiff_mode = mode;
     if (!T.empty()) st.particle_temperature = T, st.surface_heat = friction;
     if (st.u.size() != 3 * md.n || st.v.size() != 3 * md.n || (!T.empty() && (T.size() != md.n || friction.size() != md.n)))
       throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
