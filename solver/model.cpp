@@ -165,6 +165,7 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   md.volume = sub.volume;
   md.spacing = sub.spacing;
   md.spacing0 = sub.spacing;
+  md.owner = sub.owner;
   md.density = scene.material.density;
   md.mass.resize(md.n);
   md.owned.resize(md.n);

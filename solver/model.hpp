@@ -25,6 +25,7 @@ struct Model {
   std::vector<double> Xr;
   std::vector<double> spacing0;  // h_I at t = 0 (spacing: on the reference configuration)
   std::vector<std::uint8_t> owned, surface, body;  // body: subdomain.hpp's body_of(flags)
+  std::vector<std::int32_t> owner;  // the rank that owns each local particle
   // essential BCs (boundary/constraints.cpp): each local particle's constrained directions e_k,
   // orthonormal, CSR per particle; the value g_k(t) = coef * stroke(t) of prescribed face
   // `value_face` (-1: g = 0); the face a reaction is reported under (-1: a symmetry plane)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "error.hpp"
@@ -51,17 +52,6 @@ void push_forward(const double F[9], double* S) {
   S[0] = b(0, 0), S[1] = b(1, 1), S[2] = b(2, 2), S[3] = b(0, 1), S[4] = b(1, 2), S[5] = b(2, 0);
 }
 
-// Every rank's list, in rank order (set-up only).
-std::vector<std::vector<std::int32_t>> gather_lists(const std::vector<std::int32_t>& mine, const Comm& comm) {
-  const std::vector<double> counts = comm.gather_all({double(mine.size())});
-  const std::vector<double> all = comm.gather_all(std::vector<double>(mine.begin(), mine.end()));
-  std::vector<std::vector<std::int32_t>> lists(counts.size());
-  std::size_t k = 0;
-  for (std::size_t r = 0; r < counts.size(); ++r)
-    for (std::size_t j = 0; j < std::size_t(counts[r]); ++j) lists[r].push_back(std::int32_t(all[k++]));
-  return lists;
-}
-
 // Support spacings on the new reference. Spheres of the t = 0 size keep the number of particles
 // per support (plastic flow keeps volume), but where the material has stretched (the hoop direction
 // of a flange) a point can lose the particles on one side and its moment matrix degenerates. So:
@@ -69,12 +59,13 @@ std::vector<std::vector<std::int32_t>> gather_lists(const std::vector<std::int32
 // kPoor, a decade below the worst point of a fresh lattice, 0.3) grows by kGrow the spacing of
 // the particles within kReach supports of it (a modest growth over the poor point's neighbourhood),
 // once: the growth must not feed on itself (docs/decisions.md, "Reference updates: supports grown by
-// a scale-free spread, once"). The points are tested on their ranks and the grown particles are
-// shared, so every rank count grows the same ones.
-std::vector<double> conditioned_spacing(const Model& md, const Scene& scene, const std::vector<double>& Xr,
-                                        const std::vector<double>& volume, const std::vector<std::uint8_t>& body,
-                                        std::vector<double> spacing, const Comm& comm) {
-  constexpr double kPoor = 0.03, kGrow = 1.25, kReach = 1.5;
+// a scale-free spread, once"). This rank's points flag particles of its halo (ascending); share_growth
+// tells every rank that holds them, so every rank count grows the same ones.
+constexpr double kPoor = 0.03, kGrow = 1.25, kReach = 1.5;
+
+std::vector<std::int32_t> flag_growth(const Model& md, const Scene& scene, const std::vector<double>& Xr,
+                                      const std::vector<double>& volume, const std::vector<std::uint8_t>& body,
+                                      const std::vector<double>& spacing) {
   const std::size_t total = spacing.size();
   const Kernel kernel = parse_kernel(scene.discretization.kernel);
   std::vector<double> radius(total), reach(total);
@@ -97,12 +88,189 @@ std::vector<double> conditioned_spacing(const Model& md, const Scene& scene, con
   }
   std::sort(grow.begin(), grow.end());
   grow.erase(std::unique(grow.begin(), grow.end()), grow.end());
-  std::vector<std::uint8_t> grown(total, 0);
-  for (const auto& list : gather_lists(grow, comm))
-    for (auto I : list) grown[I] = 1;
-  for (std::size_t I = 0; I < total; ++I)
-    if (grown[I]) spacing[I] *= kGrow;
-  return spacing;
+  return grow;
+}
+
+// Values grouped by destination rank, for Comm::exchange.
+struct Outbox {
+  std::vector<std::vector<double>> to;
+  explicit Outbox(std::size_t ranks) : to(ranks) {}
+  // sends everything; from[r] holds what rank r sent this one
+  std::vector<std::vector<double>> exchange(const Comm& comm) const {
+    std::vector<double> send, received;
+    std::vector<int> counts, recv_counts;
+    for (const auto& list : to) {
+      send.insert(send.end(), list.begin(), list.end());
+      counts.push_back(checked_count(list.size()));
+    }
+    comm.exchange(send, counts, received, recv_counts);
+    std::vector<std::vector<double>> from(to.size());
+    auto at = received.begin();
+    for (std::size_t r = 0; r < from.size(); ++r) {
+      from[r].assign(at, at + recv_counts[r]);
+      at += recv_counts[r];
+    }
+    return from;
+  }
+  static int checked_count(std::size_t count) {
+    if (count > std::size_t(std::numeric_limits<int>::max()))
+      throw Error("reference update: more than 2^31 values for one rank");
+    return int(count);
+  }
+};
+
+// The owned particles' records (every rank's) that this rank needs on the new reference, its halo,
+// in ascending global id. A rank needs every particle whose support, grown once and searched kReach
+// wide (flag_growth), can reach one of its points or owned particles, and its cells' nodes. Every
+// owner sends its records to each rank whose box (around those points and particles) lies within kReach
+// t = 0 supports of them, and the cell nodes a rank asks for by id: memory and work follow the rank's
+// share, not the part.
+struct Halo {
+  std::vector<std::int32_t> gid;  // ascending
+  std::vector<double> records;    // kRecord per particle
+  std::vector<std::vector<std::int32_t>> sent;  // per rank: the owned records sent it (indices into this rank's)
+  std::size_t size() const { return gid.size(); }
+  const double* operator[](std::size_t k) const { return &records[kRecord * k]; }
+  std::int64_t find(std::int64_t id) const {  // position of a global id, -1 if not held
+    const auto it = std::lower_bound(gid.begin(), gid.end(), id);
+    return it != gid.end() && *it == id ? it - gid.begin() : -1;
+  }
+};
+
+Halo gather_halo(const Model& md, const Scene& scene, const std::vector<double>& mine, const Comm& comm) {
+  const std::size_t owned = mine.size() / kRecord;
+  auto position = [&](std::size_t k, int i) { return mine[kRecord * k + kX + i] + mine[kRecord * k + kRef + i]; };
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  std::vector<double> box{kInf, kInf, kInf, -kInf, -kInf, -kInf};
+  auto cover = [&](int i, double x) { box[i] = std::min(box[i], x), box[3 + i] = std::max(box[3 + i], x); };
+  for (std::size_t g = 0; g < md.m; ++g)
+    for (int i = 0; i < 3; ++i) cover(i, md.point_X[3 * g + i]);
+  for (std::size_t k = 0; k < owned; ++k)
+    for (int i = 0; i < 3; ++i) cover(i, position(k, i));
+  const std::vector<double> boxes = comm.gather_all(box);
+
+  Outbox asks(std::size_t(md.ranks));  // the cell nodes this rank needs, by owner
+  for (auto node : md.cell_nodes)
+    if (!md.owned[node]) asks.to[std::size_t(md.owner[node])].push_back(double(md.global_id[node]));
+  for (auto& list : asks.to) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  const std::vector<std::vector<double>> asked = asks.exchange(comm);
+
+  Halo halo;
+  halo.sent.resize(std::size_t(md.ranks));
+  Outbox records(std::size_t(md.ranks));
+  for (std::size_t r = 0; r < std::size_t(md.ranks); ++r) {
+    const double* b = &boxes[6 * r];
+    auto ask = asked[r].begin();
+    for (std::size_t k = 0; k < owned; ++k) {
+      const double id = mine[kRecord * k + kGid];
+      while (ask != asked[r].end() && *ask < id) ++ask;
+      double d2 = 0;  // from the particle to the box
+      for (int i = 0; i < 3; ++i) {
+        const double x = position(k, i), d = std::max({b[i] - x, x - b[3 + i], 0.0});
+        d2 += d * d;
+      }
+      // flag_growth's widest search; the grown supports (kGrow < kReach) lie inside it
+      const double reach = (1 + 1e-12) * kReach * scene.discretization.dilation * mine[kRecord * k + kSpacing0];
+      if (d2 > reach * reach && (ask == asked[r].end() || *ask != id)) continue;
+      halo.sent[r].push_back(std::int32_t(k));
+      records.to[r].insert(records.to[r].end(), &mine[kRecord * k], &mine[kRecord * (k + 1)]);
+    }
+  }
+  std::vector<double> all;
+  for (const auto& from : records.exchange(comm)) all.insert(all.end(), from.begin(), from.end());
+  std::vector<std::size_t> order(all.size() / kRecord);
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all[kRecord * a] < all[kRecord * b]; });
+  bool unique = true;
+  for (auto k : order) {
+    const auto id = std::int32_t(all[kRecord * k + kGid]);
+    unique = unique && (halo.gid.empty() || halo.gid.back() != id);
+    halo.gid.push_back(id);
+    halo.records.insert(halo.records.end(), &all[kRecord * k], &all[kRecord * (k + 1)]);
+  }
+  comm.check(unique, "reference update: two ranks own the same particle (global ids not unique)");
+  bool complete = true;
+  for (auto node : md.cell_nodes) complete = complete && halo.find(md.global_id[node]) >= 0;
+  comm.check(complete, "reference update: a node of rank " + std::to_string(md.rank) + "'s cells is owned by no rank");
+  return halo;
+}
+
+// The position of global id `id` among this rank's owned records (ascending global id).
+std::size_t owned_position(const std::vector<double>& mine, double id) {
+  std::size_t lo = 0, hi = mine.size() / kRecord;
+  while (lo < hi) {
+    const std::size_t mid = (lo + hi) / 2;
+    if (mine[kRecord * mid + kGid] < id) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
+}
+
+// Grows the spacing of every halo particle that some rank's points flagged: the flags go to the
+// particles' owners and back to every rank the owners sent them to.
+void share_growth(const Halo& halo, const std::vector<std::int32_t>& flagged, const std::vector<double>& mine,
+                  std::vector<double>& spacing, const Comm& comm) {
+  Outbox to_owner(halo.sent.size());
+  for (auto k : flagged) to_owner.to[std::size_t(halo[std::size_t(k)][kOwner])].push_back(double(halo.gid[std::size_t(k)]));
+  std::vector<std::uint8_t> grown(mine.size() / kRecord, 0);  // of this rank's owned particles
+  for (const auto& ids : to_owner.exchange(comm))
+    for (double id : ids) grown[owned_position(mine, id)] = 1;
+  Outbox back(halo.sent.size());
+  for (std::size_t r = 0; r < halo.sent.size(); ++r)
+    for (auto k : halo.sent[r])
+      if (grown[std::size_t(k)]) back.to[r].push_back(mine[kRecord * std::size_t(k) + kGid]);
+  for (const auto& ids : back.exchange(comm))
+    for (double id : ids) spacing[std::size_t(halo.find(std::int64_t(id)))] *= kGrow;
+}
+
+// The overlap maps of the new local sets (local_particles.hpp's overlap_maps, without any rank
+// holding the others' sets): each rank tells the owners which particles it holds, and each owner
+// answers with every holder of each.
+void share_holders(const Halo& halo, const std::vector<std::int32_t>& local, const std::vector<double>& mine, int rank,
+                   std::vector<std::int32_t>& neighbour_ranks, std::vector<std::vector<std::int32_t>>& maps, const Comm& comm) {
+  const std::size_t ranks = halo.sent.size(), owned = mine.size() / kRecord;
+  Outbox held(ranks);
+  std::vector<std::vector<std::int32_t>> asked_of(ranks);  // per owner, the local indices told
+  for (std::size_t k = 0; k < local.size(); ++k) {
+    const auto owner = std::size_t(halo[std::size_t(local[k])][kOwner]);
+    held.to[owner].push_back(double(halo.gid[std::size_t(local[k])]));
+    asked_of[owner].push_back(std::int32_t(k));
+  }
+  const std::vector<std::vector<double>> holds = held.exchange(comm);
+  std::vector<std::int32_t> start(owned + 1, 0), holder;  // CSR: the ranks holding each owned particle
+  for (const auto& ids : holds)
+    for (double id : ids) ++start[owned_position(mine, id) + 1];
+  for (std::size_t k = 0; k < owned; ++k) start[k + 1] += start[k];
+  holder.resize(std::size_t(start[owned]));
+  std::vector<std::int32_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t r = 0; r < ranks; ++r)
+    for (double id : holds[r]) holder[std::size_t(fill[owned_position(mine, id)]++)] = std::int32_t(r);
+  Outbox answer(ranks);
+  for (std::size_t r = 0; r < ranks; ++r)
+    for (double id : holds[r]) {
+      const std::size_t k = owned_position(mine, id);
+      answer.to[r].push_back(double(start[k + 1] - start[k]));
+      for (auto h = start[k]; h < start[k + 1]; ++h) answer.to[r].push_back(holder[std::size_t(h)]);
+    }
+  std::vector<std::pair<std::int32_t, std::int32_t>> shared;  // (other holder, local index)
+  const std::vector<std::vector<double>> answers = answer.exchange(comm);
+  for (std::size_t o = 0; o < ranks; ++o) {
+    std::size_t at = 0;
+    for (auto k : asked_of[o]) {
+      const auto count = std::size_t(answers[o][at++]);
+      for (std::size_t h = 0; h < count; ++h, ++at)
+        if (int(answers[o][at]) != rank) shared.emplace_back(std::int32_t(answers[o][at]), k);
+    }
+  }
+  std::sort(shared.begin(), shared.end());
+  neighbour_ranks.clear(), maps.clear();
+  for (const auto& [p, k] : shared) {
+    if (neighbour_ranks.empty() || neighbour_ranks.back() != p) neighbour_ranks.push_back(p), maps.emplace_back();
+    maps.back().push_back(k);
+  }
 }
 
 }  // namespace
@@ -188,81 +356,75 @@ void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm
 }
 
 void rebuild_on_reference(Model& md, State& st, const Scene& scene, const Comm& comm) {
-  const std::vector<double> all = comm.gather_all(owned_records(md, st));
-  const std::size_t total = all.size() / kRecord;
-  std::vector<const double*> record(total, nullptr);  // by global id
-  for (std::size_t k = 0; k < total; ++k) {
-    const auto gid = std::size_t(all[kRecord * k + kGid]);
-    if (gid >= total || record[gid])
-      throw Error("reference update: the owned particles' global ids are not 0.." + std::to_string(total - 1));
-    record[gid] = &all[kRecord * k];
+  const std::vector<double> mine = owned_records(md, st);
+  const Halo halo = gather_halo(md, scene, mine, comm);
+  const std::size_t held = halo.size();
+  std::vector<double> Xr(3 * held), volume(held), spacing(held);  // the new reference: X + d^ref
+  std::vector<std::uint8_t> body(held);
+  for (std::size_t k = 0; k < held; ++k) {
+    for (int i = 0; i < 3; ++i) Xr[3 * k + i] = halo[k][kX + i] + halo[k][kRef + i];
+    volume[k] = halo[k][kVolume], spacing[k] = halo[k][kSpacing0];
+    body[k] = std::uint8_t(body_of(std::uint8_t(halo[k][kFlags])));
   }
-  std::vector<double> Xr(3 * total), volume(total), h0(total);  // the new reference: X + d^ref
-  std::vector<std::uint8_t> body(total);
-  for (std::size_t I = 0; I < total; ++I) {
-    for (int i = 0; i < 3; ++i) Xr[3 * I + i] = record[I][kX + i] + record[I][kRef + i];
-    volume[I] = record[I][kVolume], h0[I] = record[I][kSpacing0];
-    body[I] = std::uint8_t(body_of(std::uint8_t(record[I][kFlags])));
-  }
-  const std::vector<double> spacing = conditioned_spacing(md, scene, Xr, volume, body, h0, comm);
-  std::vector<double> radius(total);
-  for (std::size_t I = 0; I < total; ++I) radius[I] = scene.discretization.dilation * spacing[I];
-  const NeighbourGrid grid(Xr.data(), radius.data(), total);
+  share_growth(halo, flag_growth(md, scene, Xr, volume, body, spacing), mine, spacing, comm);
+  std::vector<double> radius(held);
+  for (std::size_t k = 0; k < held; ++k) radius[k] = scene.discretization.dilation * spacing[k];
+  const NeighbourGrid grid(Xr.data(), radius.data(), held);
   LocalParticleRequest request{grid, Xr.data(), {}, md.point_X, {}};
-  for (auto node : md.cell_nodes) request.cell_nodes.push_back(std::int32_t(md.global_id[node]));
+  for (auto node : md.cell_nodes) request.cell_nodes.push_back(std::int32_t(halo.find(md.global_id[node])));
   for (std::size_t I = 0; I < md.n; ++I)
-    if (md.owned[I]) request.owned.push_back(std::int32_t(md.global_id[I]));
-  const std::vector<std::int32_t> local = local_particles(request);
-  const std::vector<std::vector<std::int32_t>> every = gather_lists(local, comm);
+    if (md.owned[I]) request.owned.push_back(std::int32_t(halo.find(md.global_id[I])));
+  const std::vector<std::int32_t> local = local_particles(request);  // halo positions, ascending global id
 
   Subdomain sub;
   sub.rank = md.rank, sub.ranks = md.ranks;
-  std::vector<std::int32_t> index(total, -1);
+  std::vector<std::int32_t> index(held, -1);  // halo position -> local index
   std::vector<double> X0;
   for (std::size_t k = 0; k < local.size(); ++k) {
-    const double* r = record[local[k]];
-    index[local[k]] = std::int32_t(k);
-    sub.global_id.push_back(local[k]);
-    for (int i = 0; i < 3; ++i) sub.X.push_back(Xr[3 * std::size_t(local[k]) + i]), X0.push_back(r[kX + i]);
-    sub.volume.push_back(r[kVolume]);
-    sub.spacing.push_back(spacing[local[k]]);
-    sub.owner.push_back(std::int32_t(r[kOwner]));
-    sub.flags.push_back(std::uint8_t(r[kFlags]));
+    const auto h = std::size_t(local[k]);
+    index[h] = std::int32_t(k);
+    sub.global_id.push_back(halo.gid[h]);
+    for (int i = 0; i < 3; ++i) sub.X.push_back(Xr[3 * h + i]), X0.push_back(halo[h][kX + i]);
+    sub.volume.push_back(halo[h][kVolume]);
+    sub.spacing.push_back(spacing[h]);
+    sub.owner.push_back(std::int32_t(halo[h][kOwner]));
+    sub.flags.push_back(std::uint8_t(halo[h][kFlags]));
   }
+  auto local_of = [&](std::size_t node) { return index[std::size_t(halo.find(md.global_id[node]))]; };
   sub.cell_global_id = md.cell_global_id;
   sub.cell_node_offsets = md.cell_node_offsets;
-  for (auto node : md.cell_nodes) sub.cell_nodes.push_back(index[md.global_id[node]]);
+  for (auto node : md.cell_nodes) sub.cell_nodes.push_back(local_of(std::size_t(node)));
   sub.surface_face_offsets = md.surface_face_offsets, sub.surface_face_cell = md.surface_face_cell;
-  for (auto node : md.surface_face_nodes) sub.surface_face_nodes.push_back(index[md.global_id[node]]);
+  for (auto node : md.surface_face_nodes) sub.surface_face_nodes.push_back(local_of(std::size_t(node)));
   sub.point_X = md.point_X;
   sub.point_weight = md.weight;
   for (std::size_t c = 0; c < md.cells; ++c)
     sub.point_cell.insert(sub.point_cell.end(), std::size_t(md.cell_points[c + 1] - md.cell_points[c]), std::int32_t(c));
-  overlap_maps(every, md.rank, sub.neighbour_ranks, sub.overlap);
+  share_holders(halo, local, mine, md.rank, sub.neighbour_ranks, sub.overlap, comm);
   sub.dies = md.dies;
 
   Model next = build_model(sub, scene, &X0);
   scale_mass(next, md.mass_scaling);
   next.spacing0.clear();
-  for (auto I : local) next.spacing0.push_back(record[I][kSpacing0]);
+  for (auto h : local) next.spacing0.push_back(halo[std::size_t(h)][kSpacing0]);
   // The stable step takes the shorter of the cells' t = 0 edges and their edges now (build_model).
   st.u.assign(3 * next.n, 0.0), st.v.assign(3 * next.n, 0.0), st.u_ref.assign(3 * next.n, 0.0);
   for (std::size_t k = 0; k < next.n; ++k)
     for (int i = 0; i < 3; ++i) {
-      const double* r = record[local[k]];
+      const double* r = halo[std::size_t(local[k])];
       st.u[3 * k + i] = r[kU + i], st.v[3 * k + i] = r[kV + i], st.u_ref[3 * k + i] = r[kRef + i];
     }
   if (!st.stiff_mode.empty()) {
     st.stiff_mode.resize(3 * next.n);
     for (std::size_t k = 0; k < next.n; ++k)
-      for (int i = 0; i < 3; ++i) st.stiff_mode[3 * k + i] = record[local[k]][kMode + i];
+      for (int i = 0; i < 3; ++i) st.stiff_mode[3 * k + i] = halo[std::size_t(local[k])][kMode + i];
   }
   if (!st.particle_temperature.empty()) {
     st.particle_temperature.resize(next.n);
     st.surface_heat.assign(next.n, 0.0);
     for (std::size_t k = 0; k < next.n; ++k) {
-      st.particle_temperature[k] = record[local[k]][kTemperature];
-      if (next.owned[k]) st.surface_heat[k] = record[local[k]][kSurfaceHeat];  // held by the owner only
+      st.particle_temperature[k] = halo[std::size_t(local[k])][kTemperature];
+      if (next.owned[k]) st.surface_heat[k] = halo[std::size_t(local[k])][kSurfaceHeat];  // held by the owner only
     }
   }
   st.force.assign(3 * next.n, 0.0);

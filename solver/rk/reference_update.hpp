@@ -11,8 +11,10 @@
 // energies are untouched. Why each choice: docs/decisions.md, "Reference updates".
 //
 // Parallel: the points stay on their rank; the rank's local particles are found again with rkprep's
-// rules on the new reference (local_particles.hpp), from the owned particles gathered by every rank,
-// so every rank count builds the same shape functions (bitwise).
+// rules on the new reference (local_particles.hpp) among a halo, the owned particles within reach of
+// its points (sent by their owners; no rank holds the whole part), and the overlap maps come from the
+// owners, who learn every holder of their particles. Every rank count builds the same shape
+// functions (bitwise).
 #pragma once
 #include <functional>
 
