@@ -99,10 +99,13 @@ struct Outbox {
   std::vector<std::vector<double>> exchange(const Comm& comm) const {
     std::vector<double> send, received;
     std::vector<int> counts, recv_counts;
+    bool fits = true;  // MPI's int counts; checked on every rank before the exchange, so none is left in it
     for (const auto& list : to) {
       send.insert(send.end(), list.begin(), list.end());
-      counts.push_back(checked_count(list.size()));
+      fits = fits && list.size() <= std::size_t(std::numeric_limits<int>::max());
+      counts.push_back(int(std::min(list.size(), std::size_t(std::numeric_limits<int>::max()))));
     }
+    comm.check(fits, "reference update: rank " + std::to_string(comm.rank()) + " would send another rank more than 2^31 values");
     comm.exchange(send, counts, received, recv_counts);
     std::vector<std::vector<double>> from(to.size());
     auto at = received.begin();
@@ -111,11 +114,6 @@ struct Outbox {
       at += recv_counts[r];
     }
     return from;
-  }
-  static int checked_count(std::size_t count) {
-    if (count > std::size_t(std::numeric_limits<int>::max()))
-      throw Error("reference update: more than 2^31 values for one rank");
-    return int(count);
   }
 };
 
@@ -161,8 +159,15 @@ Halo gather_halo(const Model& md, const Scene& scene, const std::vector<double>&
   Halo halo;
   halo.sent.resize(std::size_t(md.ranks));
   Outbox records(std::size_t(md.ranks));
+  // flag_growth's widest search; the grown supports (kGrow < kReach) lie inside it
+  auto reach_of = [&](std::size_t k) { return (1 + 1e-12) * kReach * scene.discretization.dilation * mine[kRecord * k + kSpacing0]; };
+  double widest = 0;
+  for (std::size_t k = 0; k < owned; ++k) widest = std::max(widest, reach_of(k));
   for (std::size_t r = 0; r < std::size_t(md.ranks); ++r) {
     const double* b = &boxes[6 * r];
+    bool apart = false;  // this rank's box, widened by the widest reach, misses rank r's
+    for (int i = 0; i < 3; ++i) apart = apart || box[i] - widest > b[3 + i] || box[3 + i] + widest < b[i];
+    if (apart && asked[r].empty()) continue;
     auto ask = asked[r].begin();
     for (std::size_t k = 0; k < owned; ++k) {
       const double id = mine[kRecord * k + kGid];
@@ -172,8 +177,7 @@ Halo gather_halo(const Model& md, const Scene& scene, const std::vector<double>&
         const double x = position(k, i), d = std::max({b[i] - x, x - b[3 + i], 0.0});
         d2 += d * d;
       }
-      // flag_growth's widest search; the grown supports (kGrow < kReach) lie inside it
-      const double reach = (1 + 1e-12) * kReach * scene.discretization.dilation * mine[kRecord * k + kSpacing0];
+      const double reach = reach_of(k);
       if (d2 > reach * reach && (ask == asked[r].end() || *ask != id)) continue;
       halo.sent[r].push_back(std::int32_t(k));
       records.to[r].insert(records.to[r].end(), &mine[kRecord * k], &mine[kRecord * (k + 1)]);
