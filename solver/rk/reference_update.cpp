@@ -14,9 +14,9 @@
 namespace rk {
 namespace {
 
-// What every rank learns about each owned particle: global id, X (t = 0), d, v, d^ref, volume,
-// spacing at t = 0, flags, owner, temperature coefficient and friction heat (with conduction), the
-// stable step's mode (with time.stable_step = frequency).
+// What an owner sends of each of its particles to the ranks that need it: global id, X (t = 0), d,
+// v, d^ref, volume, spacing at t = 0, flags, owner, temperature coefficient and friction heat (with
+// conduction), the stable step's mode (with time.stable_step = frequency).
 enum { kGid, kX = 1, kU = 4, kV = 7, kRef = 10, kVolume = 13, kSpacing0, kFlags, kOwner, kTemperature, kSurfaceHeat, kMode, kRecord = kMode + 3 };
 
 std::vector<double> owned_records(const Model& md, const State& st) {
