@@ -11,8 +11,8 @@
    this run (scripts/calculix_taylor.py installs ccx when missing);
 4. scaling: strong scaling of a large Taylor bar (>= 100k particles) over MPI ranks against Table 2 of
    Wang, Li, Han & Zhong 2007 (Development of parallel 3D RKPM meshless bulk forming simulation system), with the time in communication per step and the partition report;
-5. size: rkprep at 10k, 100k and 1M particles (wall time, peak memory) and the 1M bar run for a few
-   steps on 2 ranks (memory per rank and per integration point).
+5. size: rkprep at 10k, 100k and 1M particles (wall time, peak memory), the 100k bar's peak with and without
+   a reference update, and the 1M bar run for a few steps on 2 ranks (memory per rank and per integration point).
 Timings are ratios within one run on one machine. Writes WORK/bench.md and WORK/bench.json.
   scripts/bench.py [--bin build/bin] [--work build/bench] [--skip calculix size ...]
 """
@@ -153,6 +153,12 @@ def sizes(a):
         p = prep(a, case, 2, spacing)
         row = {"size": label, "spacing_m": float(spacing), "particles": p["particles"], "points": p["integration_points"],
                "prep_s": p["wall_s"], "prep_peak_mb": p["peak_memory_mb"], "phases_s": p["phases_s"]}
+        if label == "100k":  # two steps with and without a reference update: what an update adds to a rank's peak
+            base = solve(a, case, 2, "time.end=2e-8", "time.output_interval=2e-8", "reference_updates.strain=0")
+            upd = solve(a, case, 2, "time.end=2e-8", "time.output_interval=2e-8", "reference_updates.strain=1e-9")
+            row.update({"no_update_peak_mb_max_rank": base["peak_memory_mb_max_rank"],
+                        "update_peak_mb_max_rank": upd["peak_memory_mb_max_rank"], "updates": upd["reference_updates"],
+                        "update_s": upd["phases"]["reference_update"]["max_s"]})
         if label == "1M":  # a few steps: the memory the run holds, per rank and per integration point
             s = solve(a, case, 2, "time.end=3e-8", "time.output_interval=3e-8")
             row.update({"solve_steps": s["steps"], "solve_setup_s": s["setup_s"],
@@ -221,6 +227,12 @@ def report(res, a):
                    if "solve_peak_mb_max_rank" in r else "- | -")
             md.append(f"| {r['size']} | {r['particles']} | {r['points']} | {r['prep_s']:.2f} | "
                       f"{1e6 * r['prep_s'] / r['particles']:.1f} | {r['prep_peak_mb']:.0f} | {mem} |")
+        for r in res["size"]:
+            if "update_peak_mb_max_rank" in r:
+                md += ["", f"Reference update ({r['size']}, 2 ranks, {r['updates']} in two steps): largest rank "
+                       f"{r['no_update_peak_mb_max_rank']:.0f} MiB without, {r['update_peak_mb_max_rank']:.0f} MiB with "
+                       f"({r['update_peak_mb_max_rank'] / r['no_update_peak_mb_max_rank']:.2f}x; the old shape functions "
+                       f"are released before the new are built), {r['update_s']:.2f} s per update."]
         md.append("")
     return "\n".join(md)
 

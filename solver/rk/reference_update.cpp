@@ -277,6 +277,37 @@ void share_holders(const Halo& halo, const std::vector<std::int32_t>& local, con
   }
 }
 
+// The owned particles' new reference displacements x_I - X_I and velocities v^h(X_I), evaluated with
+// the old shape functions at the particles (update_reference below); the search's grid goes with it.
+void material_at_particles(const Model& md, const State& st, const Scene& scene, const Projection& project,
+                           std::vector<double>& moved, std::vector<double>& velocity) {
+  const LocalShapes shapes(md.Xr, md.volume, md.spacing, md.body, scene);
+  std::vector<std::int32_t> cols;
+  std::vector<double> N, dN;
+  for (std::size_t I = 0; I < md.n; ++I) {
+    if (!md.owned[I]) continue;
+    cols.clear(), N.clear(), dN.clear();
+    double x[3] = {md.Xr[3 * I], md.Xr[3 * I + 1], md.Xr[3 * I + 2]};
+    if (shapes.append(&md.Xr[3 * I], md.body[I], cols, N, dN).regular) {
+      for (int i = 0; i < 3; ++i) velocity[3 * I + i] = 0;
+      for (std::size_t k = 0; k < cols.size(); ++k)
+        for (int i = 0; i < 3; ++i) {
+          x[i] += N[k] * (st.u[3 * std::size_t(cols[k]) + i] - st.u_ref[3 * std::size_t(cols[k]) + i]);
+          velocity[3 * I + i] += N[k] * st.v[3 * std::size_t(cols[k]) + i];
+        }
+    } else {  // u^h cannot be evaluated there (a particle left alone): it stays at X + d
+      for (int i = 0; i < 3; ++i) x[i] += st.u[3 * I + i] - st.u_ref[3 * I + i];
+    }
+    project(I, x);
+    for (int i = 0; i < 3; ++i) moved[3 * I + i] = x[i] - md.X[3 * I + i];
+  }
+}
+
+template <class T>
+void release(std::vector<T>& v) {
+  std::vector<T>().swap(v);
+}
+
 }  // namespace
 
 double largest_strain_since_update(const Model& md, const State& st) {
@@ -329,26 +360,8 @@ void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm
   // kinetic energy this removes is booked as update_work (docs/decisions.md, "Reference updates: the
   // particles take the material's position and velocity"). Nothing here throws: every rank must
   // reach the rebuild's collectives.
-  const LocalShapes shapes(md.Xr, md.volume, md.spacing, md.body, scene);
-  std::vector<std::int32_t> cols;
-  std::vector<double> N, dN, moved(3 * md.n), velocity(st.v);
-  for (std::size_t I = 0; I < md.n; ++I) {
-    if (!md.owned[I]) continue;
-    cols.clear(), N.clear(), dN.clear();
-    double x[3] = {md.Xr[3 * I], md.Xr[3 * I + 1], md.Xr[3 * I + 2]};
-    if (shapes.append(&md.Xr[3 * I], md.body[I], cols, N, dN).regular) {
-      for (int i = 0; i < 3; ++i) velocity[3 * I + i] = 0;
-      for (std::size_t k = 0; k < cols.size(); ++k)
-        for (int i = 0; i < 3; ++i) {
-          x[i] += N[k] * (st.u[3 * std::size_t(cols[k]) + i] - st.u_ref[3 * std::size_t(cols[k]) + i]);
-          velocity[3 * I + i] += N[k] * st.v[3 * std::size_t(cols[k]) + i];
-        }
-    } else {  // u^h cannot be evaluated there (a particle left alone): it stays at X + d
-      for (int i = 0; i < 3; ++i) x[i] += st.u[3 * I + i] - st.u_ref[3 * I + i];
-    }
-    project(I, x);
-    for (int i = 0; i < 3; ++i) moved[3 * I + i] = x[i] - md.X[3 * I + i];
-  }
+  std::vector<double> moved(3 * md.n), velocity(st.v);
+  material_at_particles(md, st, scene, project, moved, velocity);
   for (std::size_t I = 0; I < md.n; ++I)
     if (md.owned[I])
       for (int i = 0; i < 3; ++i) {
@@ -407,6 +420,9 @@ void rebuild_on_reference(Model& md, State& st, const Scene& scene, const Comm& 
   share_holders(halo, local, mine, md.rank, sub.neighbour_ranks, sub.overlap, comm);
   sub.dies = md.dies;
 
+  // The old points' neighbours and shape functions are not read past here: released before the new
+  // ones are built, so an update holds one set of them, not two (docs/performance.md, "Scale model").
+  release(md.nbr_offsets), release(md.nbr), release(md.N), release(md.dN);
   Model next = build_model(sub, scene, &X0);
   scale_mass(next, md.mass_scaling);
   next.spacing0.clear();
