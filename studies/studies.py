@@ -368,12 +368,36 @@ def fmt(v, digits=4):
     return str(v)
 
 
+def kept_row(row, c):
+    """A case's row of the previous cases.csv, as numbers again, with the case's tags (h, series)."""
+    def value(v):
+        for kind in (int, float):
+            try:
+                return kind(v)
+            except ValueError:
+                pass
+        return v or None
+    return {**{k: value(v) for k, v in row.items()}, **c.tags, "kept": True}
+
+
 def report(study):
-    done = [WORK / study / c.name / "case.json" for c in STUDIES[study]()]
-    rows = [json.loads(p.read_text()) for p in done if p.exists()]
-    pending = [p.parent.name for p in done if not p.exists()]  # `studies.py report` by hand while cases run
     out = RESULTS / study
     out.mkdir(parents=True, exist_ok=True)
+    # work/ is not kept with the results: a case whose run is gone (a fresh checkout, a cleaned work/)
+    # keeps its row of the previous cases.csv, and the table says which rows those are
+    previous = {}
+    if not SMOKE and (out / "cases.csv").exists():
+        with open(out / "cases.csv", newline="") as f:
+            previous = {r["case"]: r for r in csv.DictReader(f)}
+    rows, pending = [], []  # pending: `studies.py report` by hand while cases run
+    for c in STUDIES[study]():
+        done = WORK / study / c.name / "case.json"
+        if done.exists():
+            rows.append(json.loads(done.read_text()))
+        elif c.name in previous:
+            rows.append(kept_row(previous[c.name], c))
+        else:
+            pending.append(c.name)
     keys = ["label", "verdict", "ranks", "particles", "steps", "wall_s", "ns_per_point_update", "energy_error",
             "footprint_radius_mm", "final_length_mm", "max_eq_plastic_strain", "error", "diameter_error", "message"]
     if study == "convergence":  # every frame against the converged history; the rim's radius at fixed heights
@@ -403,6 +427,10 @@ def report(study):
     if notes:
         md += ["", "Diagnostics (the message each stopped or refused run gave):", ""]
         md += [f"- {r['label']}: `{r['message'][:400]}`" for r in notes]
+    kept = [r["case"] for r in rows if r.get("kept")]
+    if kept:
+        md += ["", f"Kept from the previous report (their runs were not in work/ when this one was written): "
+               f"{', '.join(kept)}."]
     if pending:
         md += ["", f"Not finished when this report was written: {', '.join(pending)}."]
     elsewhere = [r for r in rows if r.get("solved_elsewhere")]
