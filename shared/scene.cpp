@@ -162,6 +162,7 @@ class Section {
   }
 
   bool given() const { return node_ && !node_.IsNull() && node_.size() > 0; }
+  YAML::Node node() const { return node_; }
   void record(const std::string& key, const std::string& value) { resolved_[key] = value; }
   void record_node(const std::string& key, const YAML::Node& value) { resolved_[key] = value; }
 
@@ -366,6 +367,119 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<Override>&
 }
 
 namespace {
+// The material keys of the map `key` of `parent` (the part's `material`, a body's own), read over the
+// keys of the file its `library` names (geometry/materials/, relative to the scene's folder `dir`).
+Material read_material(Section& parent, const std::string& key, const std::filesystem::path& dir, const std::string& name) {
+  std::string library;
+  const std::string path = parent.key_path(key);
+  YAML::Node mat = parent.node() ? parent.node()[key] : YAML::Node();
+  if (mat && mat.IsMap() && mat["library"]) {
+    std::filesystem::path p(mat["library"].as<std::string>());
+    library = (p.is_absolute() ? p : (dir / p)).lexically_normal().string();
+    YAML::Node keys;
+    try {
+      keys = YAML::LoadFile(library);
+    } catch (const YAML::Exception&) {
+      throw Error(where(name, mat["library"], path + ".library") + ": key '" + path + ".library': cannot read '" + library + "'");
+    }
+    if (!keys.IsMap() || !keys["material"] || !keys["material"].IsMap())
+      throw Error(library + ": a material library file holds one map, 'material:' with its keys");
+    for (auto it = keys["material"].begin(); it != keys["material"].end(); ++it)
+      if (!mat[it->first.as<std::string>()]) mat[it->first.as<std::string>()] = it->second;
+  }
+  try {
+    Section m = parent.section(key, true);
+    Material o;
+    if (!library.empty()) m.text("library", std::nullopt), m.record("library", library);
+    std::string model =
+        m.text("model", std::nullopt, {"elastic", "j2_linear", "j2_power", "johnson_cook", "hansel_spittel", "table"});
+    o.model = model == "elastic"          ? MaterialModel::elastic
+              : model == "j2_power"       ? MaterialModel::j2_power
+              : model == "johnson_cook"   ? MaterialModel::johnson_cook
+              : model == "hansel_spittel" ? MaterialModel::hansel_spittel
+              : model == "table"          ? MaterialModel::table
+                                          : MaterialModel::j2_linear;
+    o.density = m.number("density", std::nullopt, {0, 1e6, true, false});
+    o.youngs_modulus = m.number("youngs_modulus", std::nullopt, {0, 1e13, true, false});
+    o.poisson_ratio = m.number("poisson_ratio", std::nullopt, {-1, 0.5, true, true});
+    if (o.model == MaterialModel::j2_linear) {
+      o.yield_stress = m.number("yield_stress", std::nullopt, {0, 1e12, true, false});
+      o.hardening_modulus = m.number("hardening_modulus", 0.0, {0, 1e13});
+    }
+    if (o.model == MaterialModel::j2_power) {
+      o.strength = m.number("strength", std::nullopt, {0, 1e12, true, false});
+      o.reference_strain = m.number("reference_strain", std::nullopt, {0, 10, true, false});
+      o.exponent = m.number("exponent", std::nullopt, {0, 1});
+      o.yield_stress = o.strength * std::pow(o.reference_strain, o.exponent);
+    }
+    if (o.model == MaterialModel::johnson_cook) {  // Johnson & Cook (1983); temperatures in kelvin
+      o.yield_stress = m.number("yield_stress", std::nullopt, {0, 1e12, true, false});
+      o.hardening_coefficient = m.number("hardening_coefficient", std::nullopt, {0, 1e12});
+      o.hardening_exponent = m.number("hardening_exponent", std::nullopt, {0, 1, true, true});
+      o.rate_coefficient = m.number("rate_coefficient", std::nullopt, {0, 1});
+      o.reference_strain_rate = m.number("reference_strain_rate", 1.0, {0, 1e9, true, false});
+      o.thermal_exponent = m.number("thermal_exponent", std::nullopt, {0, 10, true, false});
+      o.melting_temperature = m.number("melting_temperature", std::nullopt, {0, 5000, true, false});
+      o.room_temperature = m.number("room_temperature", 293.15, {0, o.melting_temperature, true, false});
+    }
+    if (o.model == MaterialModel::hansel_spittel) {  // Hansel & Spittel (1979), T in Celsius in the law
+      o.hs_a = m.number("coefficient", std::nullopt, {0, 1e13, true, false});
+      const char* names[9] = {"m1", "m2", "m3", "m4", "m5", "", "m7", "m8", "m9"};
+      for (int i = 0; i < 9; ++i)
+        if (i != 5) o.hs_m[i] = m.number(names[i], i < 3 ? std::nullopt : std::optional<double>(0.0), {-100, 100});
+      o.minimum_strain = m.number("minimum_strain", 0.01, {0, 1, true, false});
+      o.minimum_strain_rate = m.number("minimum_strain_rate", 0.01, {0, 1e6, true, false});
+      o.strain_offset = m.number("strain_offset", 0.0, {0, 1});
+      o.strain_rate_offset = m.number("strain_rate_offset", 0.0, {0, 100});
+      o.melting_temperature = m.number("melting_temperature", 0.0, {0, 5000});
+      o.room_temperature = m.number("room_temperature", 293.15, {0, 1e4, true, false});
+    }
+    if (o.model == MaterialModel::table) {  // shared/flow_table.hpp: the file's checks name its rows
+      std::filesystem::path p(m.text("table", std::nullopt));
+      const std::string file = (p.is_absolute() ? p : (dir / p)).lexically_normal().string();
+      m.record("table", file);
+      o.table = std::make_shared<const FlowTable>(read_flow_table(file));
+      o.melting_temperature = m.number("melting_temperature", 0.0, {0, 5000});
+      o.room_temperature = m.number("room_temperature", 293.15, {0, 1e4, true, false});
+    }
+    // the thermal keys of every model: the rate-dependent laws' flow stress needs the temperature
+    const bool jc = o.model == MaterialModel::johnson_cook || o.model == MaterialModel::hansel_spittel ||
+                    o.model == MaterialModel::table;
+    // a property as a table of temperature, [[T K, value], ...], or none; `plain` the constant's key
+    auto table = [&](const std::string& key, const std::string& what, double most, const char* plain) {
+      const auto points = m.pairs(key, "[temperature K, " + what + "]", "the temperatures");
+      const std::string at = name + ": key '" + m.key_path(key) + "'";
+      for (const auto& [T, v] : points)
+        if (!(T > 0 && v > 0 && v <= most))
+          throw Error(at + ": temperatures must be positive (kelvin), each " + what + " in (0, " + std::to_string(long(most)) + "]");
+      if (!points.empty() && plain && m.get(plain, false))
+        throw Error(at + " and '" + m.key_path(plain) + "' exclude each other");
+      return PiecewiseLinear(points);
+    };
+    o.specific_heat_table = table("specific_heat_table", "specific heat J/(kg K)", 1e5, "specific_heat");
+    o.specific_heat = o.specific_heat_table.empty()
+                          ? m.number("specific_heat", jc ? std::nullopt : std::optional<double>(0.0), {0, 1e5, jc, false})
+                          : o.specific_heat_table.front();  // temperature on
+    if (o.thermal()) {
+      o.taylor_quinney = m.number("taylor_quinney", 0.9, {0, 1});
+      o.conductivity_table = table("conductivity_table", "conductivity W/(m K)", 1e4, "conductivity");
+      o.conductivity = o.conductivity_table.empty() ? m.number("conductivity", 0.0, {0, 1e4})
+                                                    : o.conductivity_table.front();  // conduction on
+      o.density_table = table("density_table", "density kg/m^3", 1e6, "thermal_expansion");
+      if (o.density_table.empty()) o.thermal_expansion = m.number("thermal_expansion", 0.0, {0, 1e-3});
+    } else {
+      for (const char* key : {"taylor_quinney", "conductivity", "conductivity_table", "thermal_expansion", "density_table"})
+        if (m.get(key, false))
+          throw Error(name + ": key '" + m.key_path(key) + "' needs '" + m.key_path("specific_heat") + "' (the temperature it acts on)");
+    }
+    m.done();
+    return o;
+  } catch (const Error& e) {  // a key the library gave: name the library too
+    if (library.empty()) throw;
+    throw Error(std::string(e.what()) + " (with " + path + ".library " + library + ")");
+  }
+}
+
 Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Override>& overrides, Side side) {
   const std::string name = file.string();
   YAML::Node root;
@@ -445,113 +559,18 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
                   "smoothing cells do not know the bodies); use gauss");
     d.done();
   }
-  // material.library: a file of material keys (geometry/materials/), relative to the scene; the
-  // scene's own material keys are read over it
-  std::string library;
-  if (YAML::Node mat = root["material"]; mat && mat.IsMap() && mat["library"]) {
-    std::filesystem::path p(mat["library"].as<std::string>());
-    library = (p.is_absolute() ? p : (s.dir / p)).lexically_normal().string();
-    YAML::Node keys;
-    try {
-      keys = YAML::LoadFile(library);
-    } catch (const YAML::Exception&) {
-      throw Error(where(name, mat["library"], "material.library") + ": key 'material.library': cannot read '" + library + "'");
-    }
-    if (!keys.IsMap() || !keys["material"] || !keys["material"].IsMap())
-      throw Error(library + ": a material library file holds one map, 'material:' with its keys");
-    for (auto it = keys["material"].begin(); it != keys["material"].end(); ++it)
-      if (!mat[it->first.as<std::string>()]) mat[it->first.as<std::string>()] = it->second;
-  }
-  try {
-    Section m = top.section("material", true);
-    auto& o = s.material;
-    if (!library.empty()) m.text("library", std::nullopt), m.record("library", library);
-    std::string model =
-        m.text("model", std::nullopt, {"elastic", "j2_linear", "j2_power", "johnson_cook", "hansel_spittel", "table"});
-    o.model = model == "elastic"          ? MaterialModel::elastic
-              : model == "j2_power"       ? MaterialModel::j2_power
-              : model == "johnson_cook"   ? MaterialModel::johnson_cook
-              : model == "hansel_spittel" ? MaterialModel::hansel_spittel
-              : model == "table"          ? MaterialModel::table
-                                          : MaterialModel::j2_linear;
-    o.density = m.number("density", std::nullopt, {0, 1e6, true, false});
-    o.youngs_modulus = m.number("youngs_modulus", std::nullopt, {0, 1e13, true, false});
-    o.poisson_ratio = m.number("poisson_ratio", std::nullopt, {-1, 0.5, true, true});
-    if (o.model == MaterialModel::j2_linear) {
-      o.yield_stress = m.number("yield_stress", std::nullopt, {0, 1e12, true, false});
-      o.hardening_modulus = m.number("hardening_modulus", 0.0, {0, 1e13});
-    }
-    if (o.model == MaterialModel::j2_power) {
-      o.strength = m.number("strength", std::nullopt, {0, 1e12, true, false});
-      o.reference_strain = m.number("reference_strain", std::nullopt, {0, 10, true, false});
-      o.exponent = m.number("exponent", std::nullopt, {0, 1});
-      o.yield_stress = o.strength * std::pow(o.reference_strain, o.exponent);
-    }
-    if (o.model == MaterialModel::johnson_cook) {  // Johnson & Cook (1983); temperatures in kelvin
-      o.yield_stress = m.number("yield_stress", std::nullopt, {0, 1e12, true, false});
-      o.hardening_coefficient = m.number("hardening_coefficient", std::nullopt, {0, 1e12});
-      o.hardening_exponent = m.number("hardening_exponent", std::nullopt, {0, 1, true, true});
-      o.rate_coefficient = m.number("rate_coefficient", std::nullopt, {0, 1});
-      o.reference_strain_rate = m.number("reference_strain_rate", 1.0, {0, 1e9, true, false});
-      o.thermal_exponent = m.number("thermal_exponent", std::nullopt, {0, 10, true, false});
-      o.melting_temperature = m.number("melting_temperature", std::nullopt, {0, 5000, true, false});
-      o.room_temperature = m.number("room_temperature", 293.15, {0, o.melting_temperature, true, false});
-    }
-    if (o.model == MaterialModel::hansel_spittel) {  // Hansel & Spittel (1979), T in Celsius in the law
-      o.hs_a = m.number("coefficient", std::nullopt, {0, 1e13, true, false});
-      const char* names[9] = {"m1", "m2", "m3", "m4", "m5", "", "m7", "m8", "m9"};
-      for (int i = 0; i < 9; ++i)
-        if (i != 5) o.hs_m[i] = m.number(names[i], i < 3 ? std::nullopt : std::optional<double>(0.0), {-100, 100});
-      o.minimum_strain = m.number("minimum_strain", 0.01, {0, 1, true, false});
-      o.minimum_strain_rate = m.number("minimum_strain_rate", 0.01, {0, 1e6, true, false});
-      o.strain_offset = m.number("strain_offset", 0.0, {0, 1});
-      o.strain_rate_offset = m.number("strain_rate_offset", 0.0, {0, 100});
-      o.melting_temperature = m.number("melting_temperature", 0.0, {0, 5000});
-      o.room_temperature = m.number("room_temperature", 293.15, {0, 1e4, true, false});
-    }
-    if (o.model == MaterialModel::table) {  // shared/flow_table.hpp: the file's checks name its rows
-      std::filesystem::path p(m.text("table", std::nullopt));
-      const std::string file = (p.is_absolute() ? p : (s.dir / p)).lexically_normal().string();
-      m.record("table", file);
-      o.table = std::make_shared<const FlowTable>(read_flow_table(file));
-      o.melting_temperature = m.number("melting_temperature", 0.0, {0, 5000});
-      o.room_temperature = m.number("room_temperature", 293.15, {0, 1e4, true, false});
-    }
-    // the thermal keys of every model: the rate-dependent laws' flow stress needs the temperature
-    const bool jc = o.model == MaterialModel::johnson_cook || o.model == MaterialModel::hansel_spittel ||
-                    o.model == MaterialModel::table;
-    // a property as a table of temperature, [[T K, value], ...], or none; `plain` the constant's key
-    auto table = [&](const std::string& key, const std::string& what, double most, const char* plain) {
-      const auto points = m.pairs(key, "[temperature K, " + what + "]", "the temperatures");
-      const std::string at = name + ": key 'material." + key + "'";
-      for (const auto& [T, v] : points)
-        if (!(T > 0 && v > 0 && v <= most))
-          throw Error(at + ": temperatures must be positive (kelvin), each " + what + " in (0, " + std::to_string(long(most)) + "]");
-      if (!points.empty() && plain && m.get(plain, false))
-        throw Error(at + " and 'material." + plain + "' exclude each other");
-      return PiecewiseLinear(points);
-    };
-    o.specific_heat_table = table("specific_heat_table", "specific heat J/(kg K)", 1e5, "specific_heat");
-    o.specific_heat = o.specific_heat_table.empty()
-                          ? m.number("specific_heat", jc ? std::nullopt : std::optional<double>(0.0), {0, 1e5, jc, false})
-                          : o.specific_heat_table.front();  // temperature on
-    if (o.thermal()) {
-      o.taylor_quinney = m.number("taylor_quinney", 0.9, {0, 1});
-      o.conductivity_table = table("conductivity_table", "conductivity W/(m K)", 1e4, "conductivity");
-      o.conductivity = o.conductivity_table.empty() ? m.number("conductivity", 0.0, {0, 1e4})
-                                                    : o.conductivity_table.front();  // conduction on
-      o.density_table = table("density_table", "density kg/m^3", 1e6, "thermal_expansion");
-      if (o.density_table.empty()) o.thermal_expansion = m.number("thermal_expansion", 0.0, {0, 1e-3});
-    } else {
-      for (const char* key : {"taylor_quinney", "conductivity", "conductivity_table", "thermal_expansion", "density_table"})
-        if (m.get(key, false))
-          throw Error(name + ": key 'material." + key + "' needs 'material.specific_heat' (the temperature it acts on)");
-    }
-    m.done();
-  } catch (const Error& e) {  // a key the library gave: name the library too
-    if (library.empty()) throw;
-    throw Error(std::string(e.what()) + " (with material.library " + library + ")");
-  }
+  s.material = read_material(top, "material", s.dir, name);
+  top.list("bodies", [&](Section& b) {  // a body's own material (the part's where it names none)
+    const std::string named = b.text("name", std::nullopt);
+    auto it = std::find_if(s.bodies.begin(), s.bodies.end(), [&](const Scene::Body& o) { return o.name == named; });
+    if (it == s.bodies.end()) throw Error(b.where_of("name") + ": no body '" + named + "' in geometry.bodies");
+    if (it->material) throw Error(b.where_of("name") + ": body '" + named + "' is listed twice");
+    it->material = std::make_shared<const Material>(read_material(b, "material", s.dir, name));
+    if (s.material.thermal() || it->material->thermal())  // (the rate- and temperature-dependent laws need it)
+      throw Error(b.where_of("material") + ": a body's own material is offered without temperature only "
+                  "(material.specific_heat and the laws that need it): the heat model holds one material; "
+                  "leave it out and the body takes the part's");
+  });
   {
     Section ic = top.section("initial_conditions");
     s.initial.velocity = ic.vec3("velocity", Vec3{0, 0, 0});

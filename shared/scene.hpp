@@ -149,7 +149,7 @@ struct Scene {
     std::string cad;          // path relative to dir
     double unit = 1.0;        // metres per CAD length unit
   } geometry;
-  // Further deformable bodies of the part's material (a striker, an insert, a second billet): each its
+  // Further deformable bodies (a striker, an insert, a second billet), of the part's material or their own: each its
   // own CAD (geometry.bodies), meshed at the part's spacing, with its own supports (no shape function
   // spans two bodies) and its own initial velocity (initial_conditions.bodies); the part's geometry.cad
   // is body 0. They meet the part and each other through the part's contact (solver/contact/part_contact.hpp).
@@ -158,6 +158,8 @@ struct Scene {
     std::string cad;    // absolute path
     double unit = 1.0;  // metres per CAD unit
     Vec3 velocity{};    // m/s, uniform
+    // its own material (section `bodies`), elastic or J2 without temperature; null: the part's
+    std::shared_ptr<const Material> material;
   };
   std::vector<Body> bodies;
 

@@ -39,7 +39,6 @@ HighestFrequency::HighestFrequency(const Model& md, const Comm& comm)
 // theta = tr grad_x v (its cell's weighted mean with F-bar), J = det F (the cell's mean with F-bar)
 void HighestFrequency::apply(const Model& md, const State& st, const Comm& comm) {
   const std::vector<double>& v = st.stiff_mode;
-  const double K = md.material.bulk, G = md.material.shear;
   double bound = 0;
   for (std::size_t c = 0; c < md.cells; ++c) {  // (every point lies in a cell: model.cpp)
     const auto g0 = std::size_t(md.cell_points[c]), g1 = std::size_t(md.cell_points[c + 1]);
@@ -59,6 +58,7 @@ void HighestFrequency::apply(const Model& md, const State& st, const Comm& comm)
       wt += md.weight[g] * (L[0] + L[4] + L[8]), w += md.weight[g];
     }
     const double theta_cell = w > 0 ? wt / w : 0.0;  // the F-bar mean of tr grad_x v
+    const double K = md.material_of_cell(c).law.bulk, G = md.material_of_cell(c).law.shear;
     for (auto g = g0; g < g1; ++g) {
       double* L = &P_[9 * g];
       const double tr = L[0] + L[4] + L[8], theta = md.fbar ? theta_cell : tr;

@@ -152,6 +152,44 @@ void build_material_rows(Model& md, const LocalShapes& shapes) {
   checked_int(std::int64_t(md.material_cols.size()), "rank " + std::to_string(md.rank) + ": the particles' material rows (entries)");
 }
 
+// The J2 law of a material of the scene.
+J2Params law_of(const Material& mat) {
+  J2Params law;
+  if (mat.model == MaterialModel::johnson_cook) {
+    law = J2Params::johnson_cook_law(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress,
+                                             mat.hardening_coefficient, mat.hardening_exponent, mat.rate_coefficient,
+                                             mat.reference_strain_rate, mat.thermal_exponent, mat.room_temperature,
+                                             mat.melting_temperature);
+  } else if (mat.model == MaterialModel::table) {
+    law = J2Params::from(mat.youngs_modulus, mat.poisson_ratio, 0, 0, true);
+    law.table = mat.table;
+    law.yield0 = law.yield(0);
+  } else if (mat.model == MaterialModel::hansel_spittel) {
+    const double a_m[9] = {mat.hs_a, mat.hs_m[0], mat.hs_m[1], mat.hs_m[2], mat.hs_m[3], mat.hs_m[4], mat.hs_m[6], mat.hs_m[7], mat.hs_m[8]};
+    law = J2Params::hansel_spittel_law(mat.youngs_modulus, mat.poisson_ratio, a_m, mat.minimum_strain,
+                                               mat.minimum_strain_rate, mat.strain_offset, mat.strain_rate_offset);
+  } else {
+    law = mat.model == MaterialModel::j2_power
+                      ? J2Params::power(mat.youngs_modulus, mat.poisson_ratio, mat.strength, mat.reference_strain, mat.exponent)
+                      : J2Params::from(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress, mat.hardening_modulus,
+                                       mat.model == MaterialModel::j2_linear);
+  }
+  return law;
+}
+
+// The scene's materials as Model::materials orders them: the part's, then the bodies' own.
+std::vector<Solid> solids(const Scene& scene) {
+  std::vector<Solid> out;
+  auto add = [&](const Material& mat) {
+    const J2Params law = law_of(mat);
+    out.push_back({law, mat.density, law.bulk + 4.0 / 3.0 * law.shear});
+  };
+  add(scene.material);
+  for (const auto& b : scene.bodies)
+    if (b.material) add(*b.material);
+  return out;
+}
+
 }  // namespace
 
 Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<double>* initial_X) {
@@ -166,16 +204,22 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   md.spacing = sub.spacing;
   md.spacing0 = sub.spacing;
   md.owner = sub.owner;
-  md.density = scene.material.density;
+  md.materials = solids(scene);
+  std::vector<std::uint8_t> body_material(scene.bodies.size() + 1, 0);  // body -> index in md.materials
+  for (std::size_t b = 0, k = 1; b < scene.bodies.size(); ++b)
+    if (scene.bodies[b].material) body_material[b + 1] = std::uint8_t(k++);
   md.mass.resize(md.n);
   md.owned.resize(md.n);
   md.surface.resize(md.n);
   md.body.resize(md.n);
   for (std::size_t I = 0; I < md.n; ++I) {
-    md.mass[I] = md.density * sub.volume[I];
     md.owned[I] = sub.owner[I] == sub.rank;
     md.surface[I] = (sub.flags[I] & kSurface) != 0;
     md.body[I] = std::uint8_t(body_of(sub.flags[I]));
+    if (md.body[I] >= body_material.size())
+      throw Error("subdomain of rank " + std::to_string(md.rank) + ": particle " + std::to_string(md.global_id[I]) +
+                  " is of body " + std::to_string(md.body[I]) + ", which the scene does not have; re-run rkprep");
+    md.mass[I] = md.materials[body_material[md.body[I]]].density * sub.volume[I];
   }
   build_constraints(md, sub, scene);
 
@@ -193,6 +237,12 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
     ++md.cell_points[sub.point_cell[g] + 1];
   }
   for (std::size_t c = 0; c < md.cells; ++c) md.cell_points[c + 1] += md.cell_points[c];
+  md.cell_material.resize(md.cells);
+  md.point_material.resize(md.m);
+  for (std::size_t c = 0; c < md.cells; ++c) {
+    md.cell_material[c] = body_material[std::size_t(cell_body(md, c))];
+    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) md.point_material[std::size_t(g)] = md.cell_material[c];
+  }
   // The time step's length: the shortest edge at t = 0, and after a reference update the shorter of
   // that and the edge on the new reference (the step then follows the points' stretch since the
   // update, which alone would forget a cell's compression before it; supports keep their t = 0 size,
@@ -226,25 +276,6 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   }
 
   const auto& mat = scene.material;
-  if (mat.model == MaterialModel::johnson_cook) {
-    md.material = J2Params::johnson_cook_law(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress,
-                                             mat.hardening_coefficient, mat.hardening_exponent, mat.rate_coefficient,
-                                             mat.reference_strain_rate, mat.thermal_exponent, mat.room_temperature,
-                                             mat.melting_temperature);
-  } else if (mat.model == MaterialModel::table) {
-    md.material = J2Params::from(mat.youngs_modulus, mat.poisson_ratio, 0, 0, true);
-    md.material.table = mat.table;
-    md.material.yield0 = md.material.yield(0);
-  } else if (mat.model == MaterialModel::hansel_spittel) {
-    const double a_m[9] = {mat.hs_a, mat.hs_m[0], mat.hs_m[1], mat.hs_m[2], mat.hs_m[3], mat.hs_m[4], mat.hs_m[6], mat.hs_m[7], mat.hs_m[8]};
-    md.material = J2Params::hansel_spittel_law(mat.youngs_modulus, mat.poisson_ratio, a_m, mat.minimum_strain,
-                                               mat.minimum_strain_rate, mat.strain_offset, mat.strain_rate_offset);
-  } else {
-    md.material = mat.model == MaterialModel::j2_power
-                      ? J2Params::power(mat.youngs_modulus, mat.poisson_ratio, mat.strength, mat.reference_strain, mat.exponent)
-                      : J2Params::from(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress, mat.hardening_modulus,
-                                       mat.model == MaterialModel::j2_linear);
-  }
   if (mat.thermal()) {
     md.heat_capacity = mat.density * mat.specific_heat;
     md.taylor_quinney = mat.taylor_quinney;
@@ -254,7 +285,6 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
     md.density_table = mat.density_table;
     md.initial_temperature = scene.initial.temperature;
   }
-  md.wave_modulus = md.material.bulk + 4.0 / 3.0 * md.material.shear;
   md.damage_cockcroft_latham = scene.damage.cockcroft_latham, md.damage_brozzo = scene.damage.brozzo;
   md.damage_oyane = scene.damage.oyane, md.oyane_a = scene.damage.oyane_a;
   // F-bar averages the dilatation over a cell's points: the identity where every cell has one point
@@ -272,8 +302,18 @@ namespace rk {
 
 void scale_mass(Model& md, double factor) {
   md.mass_scaling *= factor;
-  md.density *= factor;
+  for (auto& s : md.materials) s.density *= factor;
   for (auto& m : md.mass) m *= factor;
+}
+
+}  // namespace rk
+
+namespace rk {
+
+void single_material(Model& md, const J2Params& law, double density) {
+  md.materials = {Solid{law, density, law.bulk + 4.0 / 3.0 * law.shear}};
+  md.cell_material.assign(md.cells, 0);
+  md.point_material.assign(md.m, 0);
 }
 
 }  // namespace rk

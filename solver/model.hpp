@@ -3,6 +3,7 @@
 // stored in CSR aligned with the neighbour columns, the cells (for F-bar and the time step), the
 // constraints.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -13,6 +14,16 @@
 #include "subdomain.hpp"
 
 namespace rk {
+
+// A material as the step uses it.
+struct Solid {
+  J2Params law;
+  double density = 0;       // kg/m^3, times the mass-scaling factor
+  double wave_modulus = 0;  // K + 4G/3, for the dilatational wave speed
+  // the dilatational wave speed squared at volume ratio J (the 1e-12 floor keeps it real until the
+  // stress update's health check stops a collapsed cell)
+  double wave_speed2(double J) const { return wave_modulus * std::max(J, 1e-12) / density; }
+};
 
 struct Model {
   int rank = 0, ranks = 1;
@@ -73,8 +84,12 @@ struct Model {
 
   std::vector<DieSurface> dies;  // rigid die surfaces at t = 0
 
-  J2Params material;
-  double density = 0;       // kg/m^3, times the mass-scaling factor
+  // The materials: [0] the part's (and a body's without its own), then the bodies' own in the order of
+  // geometry.bodies; the index of each cell's and each point's (a cell never spans two bodies)
+  std::vector<Solid> materials;
+  std::vector<std::uint8_t> cell_material, point_material;
+  const Solid& material_of_cell(std::size_t c) const { return materials[cell_material[c]]; }
+  const Solid& material_at(std::size_t g) const { return materials[point_material[g]]; }
   double mass_scaling = 1;  // density factor applied to reach time.mass_scaling_dt
   // heating by plastic work: dT = taylor_quinney dW_p / heat_capacity, with the material's own
   // rho0 c (J/(m^3 K), never mass-scaled); 0 without temperature. With a specific heat table c(T),
@@ -99,7 +114,6 @@ struct Model {
     return density_table.empty() ? 1 + thermal_expansion * (T - initial_temperature)
                                  : std::cbrt(density_table.at(initial_temperature) / density_table.at(T));
   }
-  double wave_modulus = 0;  // K + 4G/3, for the dilatational wave speed
   bool damage_cockcroft_latham = false, damage_brozzo = false, damage_oyane = false;  // the criteria the scene asks for
   double oyane_a = 0;                                                                  // Oyane's constant
   bool fbar = true;
@@ -117,5 +131,8 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
 
 // Quasi-static forming in explicit time: multiplies the density (masses and wave speed) by `factor`.
 void scale_mass(Model& md, double factor);
+
+// One material for every cell and point of `md` (its cells and points counted): for models built by hand.
+void single_material(Model& md, const J2Params& law, double density);
 
 }  // namespace rk

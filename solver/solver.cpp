@@ -570,8 +570,11 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   comm.min(&scales.h_min, 1);
   scales.v_start = fastest_speed(scene_, scales.part_lo, scales.part_hi);  // the fastest start or tool (m/s)
   health_ = std::make_unique<HealthChecks>(scene_, scales);
-  // rho c_L v_max at the density the run uses: mass scaling raises a tool's starting pressure with it
-  pressure_bound_ = {std::sqrt(md_.density * md_.wave_modulus) * scales.v_start, scene_.health.max_pressure_ratio};
+  // rho c_L v_max at the density the run uses (mass scaling raises a tool's starting pressure with it),
+  // of the stiffest of the materials
+  double impedance = 0;
+  for (const Solid& s : md_.materials) impedance = std::max(impedance, std::sqrt(s.density * s.wave_modulus));
+  pressure_bound_ = {impedance * scales.v_start, scene_.health.max_pressure_ratio};
   start_presses(scales.h_min);
   check_reach();
 

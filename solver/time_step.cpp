@@ -39,8 +39,7 @@ StableStep stable_time_step(const Model& md, const State& st, double cfl, bool d
   double dt = std::numeric_limits<double>::infinity();
   std::size_t which = 0;
   for (std::size_t c = 0; c < md.cells; ++c) {
-    // (the 1e-12 floor keeps c real until the stress update's health check stops a collapsed cell)
-    const double c2 = md.wave_modulus * std::max(st.cell_J[c], 1e-12) / md.density;
+    const double c2 = md.material_of_cell(c).wave_speed2(st.cell_J[c]);
     const double scale0 = md.cell_h0[c] / std::sqrt(c2);  // dt of the cell = scale * stretch
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
       const double* F = &st.F[9 * std::size_t(g)];

@@ -44,7 +44,7 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
   const std::size_t slaves = particles_.size() + md.m;
   mass_.resize(slaves), N_sum_.assign(slaves, 0.0), N_max_.assign(slaves, 0.0);
   for (std::size_t s = 0; s < slaves; ++s) {
-    mass_[s] = s < particles_.size() ? md.mass[particles_[s]] : md.density * md.weight[s - particles_.size()];
+    mass_[s] = s < particles_.size() ? md.mass[particles_[s]] : md.material_at(s - particles_.size()).density * md.weight[s - particles_.size()];
     const Row r = row(md, s);
     for (std::int32_t k = 0; k < r.size; ++k) N_sum_[s] += std::abs(r.N[k]), N_max_[s] = std::max(N_max_[s], std::abs(r.N[k]));
   }
@@ -243,7 +243,7 @@ void DieContact::face_friction(const Model& md, const State& st, double t, doubl
       double flow = 0, pressure = 0;
       for (auto g = g0; g < g1; ++g) {
         const double rate_g = st.plastic_rate.empty() ? 0.0 : st.plastic_rate[g];
-        const double y_g = md.material.flow_stress(st.ep[g], rate_g, st.temperature.empty() ? 0.0 : st.temperature[g]);
+        const double y_g = md.material_at(g).law.flow_stress(st.ep[g], rate_g, st.temperature.empty() ? 0.0 : st.temperature[g]);
         const double* tau = &st.tau[6 * g];
         const double* nn = hit.normal;
         const double tnn = tau[0] * nn[0] * nn[0] + tau[1] * nn[1] * nn[1] + tau[2] * nn[2] * nn[2] +

@@ -78,7 +78,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
                                  tau[2] / J, tau[3] / J, tau[4] / J, tau[5] / J};
     if (thermal_col_ > 0) {
       values[thermal_col_] = point_heat(st, g), values[thermal_col_ + 1] = rate;
-      values[thermal_col_ + 2] = md.material.flow_stress(st.ep[g], rate, st.temperature[g]);
+      values[thermal_col_ + 2] = md.material_at(g).law.flow_stress(st.ep[g], rate, st.temperature[g]);
     }
     for (int k = 0; damage_col_ > 0 && k < kDamage; ++k) values[damage_col_ + k] = st.damage[kDamageCriteria * g + std::size_t(k)];
     double nmax = 0;

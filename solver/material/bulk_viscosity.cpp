@@ -18,8 +18,8 @@ void update_bulk_viscosity(const Model& md, State& st, const Scene::BulkViscosit
   for (std::size_t c = 0; c < md.cells; ++c) {
     const auto g0 = std::size_t(md.cell_points[c]), g1 = std::size_t(md.cell_points[c + 1]);
     if (g0 == g1) continue;  // (nodal integration leaves cells without points)
-    // (the 1e-12 floor keeps c real until the stress update's health check stops a collapsed cell)
-    const double c_wave = std::sqrt(md.wave_modulus * std::max(st.cell_J[c], 1e-12) / md.density);
+    const Solid& solid = md.material_of_cell(c);
+    const double c_wave = std::sqrt(solid.wave_speed2(st.cell_J[c]));
     double h = 0;  // the particle spacing about the cell: the resolution a shock is spread over
     const auto n0 = md.cell_node_offsets[c], n1 = md.cell_node_offsets[c + 1];
     for (auto n = n0; n < n1; ++n) h += md.spacing0[std::size_t(md.cell_nodes[std::size_t(n)])];
@@ -31,7 +31,7 @@ void update_bulk_viscosity(const Model& md, State& st, const Scene::BulkViscosit
       const double e = std::log(J_last / J) / dt;  // |tr D|, compression
       const double l = h * std::cbrt(J);
       const double Q = k.linear * c_wave + k.quadratic * l * e;
-      q = md.density / J * l * e * Q;
+      q = solid.density / J * l * e * Q;
       const double r = Q / c_wave;
       factor = 1 / (r + std::sqrt(1 + r * r));
     };

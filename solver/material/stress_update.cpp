@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "material/damage.hpp"
 #include "material/j2_plasticity.hpp"
@@ -61,12 +62,12 @@ void first_piola(const Model& md, State& st, std::size_t g, int n, double pc) {
 }
 
 // The pressure p (compression positive) of point g, or of its cell with F-bar, against the bound.
-// floor: p_ref at ep = 0, its least (hardening is never negative: scene.cpp), so a pressure that
-// cannot raise the rank's largest ratio so far skips sigma_y(ep) (a pow for the power law).
-void check_pressure(const Model& md, const PressureBound& b, double floor, double p, double ep, std::size_t g,
+// floor: p_ref at ep = 0, its least over the materials (hardening is never negative: scene.cpp), so a
+// pressure that cannot raise the rank's largest ratio so far skips sigma_y(ep) (a pow for the power law).
+void check_pressure(const J2Params& law, const PressureBound& b, double floor, double p, double ep, std::size_t g,
                     StressHealth& h) {
   if (!(std::abs(p) > h.pressure_ratio * floor)) return;  // (and so not past the bound either)
-  const double ref = b.impact + (md.material.plastic ? md.material.yield(ep) : 0.0);
+  const double ref = b.impact + (law.plastic ? law.yield(ep) : 0.0);
   if (!(ref > 0)) return;  // an elastic part at rest and untouched: nothing to scale a bound with
   const double r = std::abs(p) / ref;
   if (r > h.pressure_ratio) h.pressure_ratio = r, h.pressure = p;
@@ -98,14 +99,17 @@ void accumulate_damage(const Model& md, State& st, std::size_t g0, std::size_t g
 StressHealth update_stress(const Model& md, State& st, const PressureBound& bound) {
   StressHealth health;
   double thermal_work = 0;
-  const double floor = bound.impact + (md.material.plastic ? md.material.yield(0.0) : 0.0);
+  double floor = std::numeric_limits<double>::infinity();
+  for (const Solid& s : md.materials) floor = std::min(floor, bound.impact + (s.law.plastic ? s.law.yield(0.0) : 0.0));
   J2Batch b;
   // F-bar couples the points of a cell; without it (volumetric: none, nodal integration) the points
-  // go kLanes at a time whatever their cells
-  const std::size_t groups = md.fbar ? md.cells : (md.m + kLanes - 1) / kLanes;
-  for (std::size_t c = 0; c < groups; ++c) {
-    const std::size_t g0 = md.fbar ? std::size_t(md.cell_points[c]) : c * kLanes;
-    const std::size_t g1 = md.fbar ? std::size_t(md.cell_points[c + 1]) : std::min(md.m, g0 + kLanes);
+  // go kLanes at a time whatever their cells, of one material each batch
+  for (std::size_t c = 0, g0 = 0, g1 = 0; md.fbar ? c < md.cells : g1 < md.m; ++c, g0 = g1) {
+    if (md.fbar) g0 = std::size_t(md.cell_points[c]), g1 = std::size_t(md.cell_points[c + 1]);
+    else
+      for (g1 = g0 + 1; g1 < std::min(md.m, g0 + kLanes) && md.point_material[g1] == md.point_material[g0];) ++g1;
+    if (g0 == g1) continue;
+    const J2Params& law = md.material_at(g0).law;  // (a cell never spans two bodies)
     bool cell_ok = true;
     for (auto g = g0; g < g1; ++g)
       if (!(st.J[g] > 0) || !std::isfinite(st.J[g])) {
@@ -119,7 +123,7 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
       const int n = int(std::min<std::size_t>(kLanes, g1 - g));
       Lane stretch;
       load(md, st, c, g, n, b, stretch);
-      j2_update(md.material, b);
+      j2_update(law, b);
       for (int l = 0; l < n; ++l) {
         const std::size_t p = g + l;
         double* t = &st.tau[6 * p];
@@ -151,12 +155,12 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
         const double J = md.fbar ? 0.0 : st.total_J(p);
         if (!md.fbar && !(J > kMinVolumeRatio && J < 1 / kMinVolumeRatio) && health.ok) health = {false, p, J};
         if (!md.fbar)
-          check_pressure(md, bound, floor, (st.q.empty() ? 0.0 : st.q[p]) - (t[0] + t[1] + t[2]) / (3 * J), st.ep[p], p, health);
+          check_pressure(law, bound, floor, (st.q.empty() ? 0.0 : st.q[p]) - (t[0] + t[1] + t[2]) / (3 * J), st.ep[p], p, health);
         ep_max = std::max(ep_max, st.ep[p]);
       }
     }
     if (md.fbar && !(wJ > kMinVolumeRatio * w && wJ < w / kMinVolumeRatio) && health.ok) health = {false, g0, wJ / w};
-    if (md.fbar && health.ok) check_pressure(md, bound, floor, (st.q.empty() ? 0.0 : st.q[g0]) - wp / wJ, ep_max, g0, health);
+    if (md.fbar && health.ok) check_pressure(law, bound, floor, (st.q.empty() ? 0.0 : st.q[g0]) - wp / wJ, ep_max, g0, health);
     if (!health.ok) continue;
     const double pc = md.fbar ? wp / wJ : 0.0;
     if (!st.damage.empty()) accumulate_damage(md, st, g0, g1, pc, increment);

@@ -57,6 +57,6 @@ inline LiftedPast lifted_past(const rk::Model& md, double lift, double top, doub
     if (md.X[3 * I + 2] + lift > top) ++r.particles, r.force += s * md.mass[I] / (dt * dt) * (md.X[3 * I + 2] + lift - top);
   for (std::size_t g = 0; g < md.m; ++g)
     if (md.point_X[3 * g + 2] + lift > top)
-      ++r.points, r.force += s * md.density * md.weight[g] / (dt * dt) * (md.point_X[3 * g + 2] + lift - top);
+      ++r.points, r.force += s * md.material_at(g).density * md.weight[g] / (dt * dt) * (md.point_X[3 * g + 2] + lift - top);
   return r;
 }

@@ -22,8 +22,9 @@ rk::Model cell(bool fbar) {
   md.cell_nodes = {0, 1};
   md.spacing0 = {0.8e-3, 1.2e-3};
   md.weight = {1.0, 3.0};
-  md.density = 8930;
-  md.wave_modulus = 187.8e9;
+  md.materials = {rk::Solid{{}, 8930, 187.8e9}};
+  md.cell_material = {0};
+  md.point_material = {0, 0};
   return md;
 }
 
@@ -66,9 +67,9 @@ TEST(BulkViscosity, ClosedFormInCompressionNoneInExpansion) {
   st.cell_J[0] = 0.999;
   rk::update_bulk_viscosity(md, st, kDefaults);
   const double J = 0.999, e = std::log(1 / J) / 1e-8, l = 1e-3 * std::cbrt(J);
-  const double c = std::sqrt(md.wave_modulus * 0.999 / md.density);
+  const double c = std::sqrt(md.materials[0].wave_modulus * 0.999 / md.materials[0].density);
   const double Q = 0.06 * c + 1.5 * l * e;
-  EXPECT_NEAR(st.q[0] / (md.density / J * l * e * Q), 1.0, 1e-12);
+  EXPECT_NEAR(st.q[0] / (md.materials[0].density / J * l * e * Q), 1.0, 1e-12);
   EXPECT_GT(st.q[0], 1e8) << "0.1 % in 10 ns: a shock-like rate, q of the order of 100 MPa";
   EXPECT_EQ(st.q[1], 0.0) << "expansion: no viscosity";
   EXPECT_NEAR(st.dt_factor[0] * (Q / c + std::sqrt(1 + Q * Q / (c * c))), 1.0, 1e-12);
@@ -96,7 +97,7 @@ TEST(BulkViscosity, TheStableStepShrinksByItsFactor) {
   const rk::State st = one_step(md, 0.999, 0.9995);
   EXPECT_LT(st.dt_factor[0], 0.94) << "the linear term alone takes 6 %";
   // the points keep F = I (stretch 1): the step is h0 / c times the smaller factor
-  const double dt_plain = md.cell_h0[0] / std::sqrt(md.wave_modulus * st.cell_J[0] / md.density);
+  const double dt_plain = md.cell_h0[0] / std::sqrt(md.materials[0].wave_modulus * st.cell_J[0] / md.materials[0].density);
   EXPECT_NEAR(rk::stable_time_step(md, st, 1.0).dt / (dt_plain * std::min(st.dt_factor[0], st.dt_factor[1])), 1.0, 1e-12);
 }
 

@@ -148,7 +148,7 @@ TEST(DieContact, SymmetryPlanesHoldTheMaterialThatCrossesThem) {
   }
   for (std::size_t g = 0; g < md.m; ++g)
     if (md.point_X[3 * g] - shift < 0) {
-      ++points, expected += s * md.density * md.weight[g] / (dt * dt) * (shift - md.point_X[3 * g]);
+      ++points, expected += s * md.material_at(g).density * md.weight[g] / (dt * dt) * (shift - md.point_X[3 * g]);
       deepest = std::max(deepest, shift - md.point_X[3 * g]);
     }
   ASSERT_GT(points, 0);
@@ -189,7 +189,7 @@ struct Lifted {
       if (md.X[3 * I + 2] + lift > top) slaves.push_back({md.X[3 * I + 2] + lift - top, md.mass[I], 1.0});
     for (std::size_t g = 0; g < md.m; ++g)
       if (md.point_X[3 * g + 2] + lift > top)
-        slaves.push_back({md.point_X[3 * g + 2] + lift - top, md.density * md.weight[g], 0.5});
+        slaves.push_back({md.point_X[3 * g + 2] + lift - top, md.material_at(g).density * md.weight[g], 0.5});
     for (const auto& s : slaves) depth_min = std::min(depth_min, s.depth), depth_max = std::max(depth_max, s.depth);
   }
   static rk::State state(const rk::Model& md, const double v[3]) {

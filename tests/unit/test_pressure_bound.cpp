@@ -40,13 +40,13 @@ struct Compressed {
     md.cell_points = {0, 2};
     md.weight = {1e-9, 3e-9};
     md.dN_max = {1e3, 1e3};
-    md.material = rk::J2Params::from(117.0e9, 0.35, 400.0e6, 100.0e6, true);
+    rk::single_material(md, rk::J2Params::from(117.0e9, 0.35, 400.0e6, 100.0e6, true), 8930);
     st = rk::State::initial(md, std::array<double, 3>{}.data(), std::array<double, 9>{}.data());
     const double stretch = std::cbrt(J);
     for (std::size_t g = 0; g < md.m; ++g)
       st.F[9 * g] = st.F[9 * g + 4] = st.F[9 * g + 8] = stretch, st.J[g] = J;
     st.cell_J[0] = J;
-    pressure = -md.material.bulk * std::log(J) / J;
+    pressure = -md.materials[0].law.bulk * std::log(J) / J;
   }
 };
 
@@ -72,7 +72,7 @@ TEST(PressureBound, CompressedCellMeasuredAndStoppedPastTheBound) {
 
 TEST(PressureBound, ElasticPartUntouchedHasNoScale) {
   Compressed c(0.99);
-  c.md.material.plastic = false;  // elastic, at rest, no tools: p_ref = 0, no ratio and no stop
+  c.md.materials[0].law.plastic = false;  // elastic, at rest, no tools: p_ref = 0, no ratio and no stop
   const rk::StressHealth h = rk::update_stress(c.md, c.st, {0, 20});
   EXPECT_TRUE(h.ok);
   EXPECT_EQ(h.pressure_ratio, 0.0);

@@ -191,6 +191,32 @@ TEST(Scene, AMaterialLibraryGivesTheKeysTheSceneDoesNotOverride) {
   EXPECT_NE(bad.find("with material.library " + lib), std::string::npos) << bad;
 }
 
+// A body's own material (section `bodies`): read as the part's (a library under it too), the part's where
+// a body names none; one clear error for an unknown or repeated body, a bad key under it, and temperature.
+TEST(Scene, ABodyHasItsOwnMaterialOrThePartsOne) {
+  const std::string lib = (fs::temp_directory_path() / "rk_library_body_steel.yaml").string();
+  std::ofstream(lib) << "material:\n  model: elastic\n  density: 7850\n  youngs_modulus: 210.0e9\n  poisson_ratio: 0.3\n";
+  const std::string two = replace(kGood, "  unit: mm\n", "  unit: mm\n  bodies:\n    - {name: striker, cad: s.geo}\n"
+                                                         "    - {name: anvil, cad: a.geo}\n");
+  const std::string own = two + "bodies:\n  - name: striker\n    material: {library: " + lib + ", poisson_ratio: 0.0}\n";
+  const rk::Scene s = rk::load_scene(write_scene(own));
+  ASSERT_EQ(s.bodies.size(), 2u);
+  ASSERT_TRUE(s.bodies[0].material != nullptr);
+  EXPECT_EQ(s.bodies[0].material->density, 7850);
+  EXPECT_EQ(s.bodies[0].material->poisson_ratio, 0.0);  // the scene's key over the library's
+  EXPECT_TRUE(s.bodies[1].material == nullptr) << "the anvil takes the part's";
+  EXPECT_EQ(s.material.density, 8930);
+  const std::string unknown = error_of(replace(own, "  - name: striker\n    material", "  - name: hammer\n    material"));
+  EXPECT_NE(unknown.find("key 'bodies[0].name': no body 'hammer' in geometry.bodies"), std::string::npos) << unknown;
+  const std::string twice = error_of(own + "  - name: striker\n    material: {model: elastic, density: 1, youngs_modulus: 1, poisson_ratio: 0}\n");
+  EXPECT_NE(twice.find("bodies[1].name': body 'striker' is listed twice"), std::string::npos) << twice;
+  const std::string bad = error_of(replace(own, "poisson_ratio: 0.0}", "poisson_ratio: 0.7}"));
+  EXPECT_NE(bad.find("key 'bodies[0].material.poisson_ratio' = 0.7 is out of range"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("with bodies[0].material.library " + lib), std::string::npos) << bad;
+  const std::string hot = error_of(replace(own, "poisson_ratio: 0.0}", "poisson_ratio: 0.0, specific_heat: 460}"));
+  EXPECT_NE(hot.find("bodies[0].material': a body's own material is offered without temperature only"), std::string::npos) << hot;
+}
+
 TEST(Scene, TheShippedMaterialsLoad) {
   for (const char* name : {"aisi_1045", "ofhc_copper", "aluminium_2024", "c45_hot"}) {
     const std::string scene = replace(kGood, "  model: j2_linear\n  density: 8930\n  youngs_modulus: 117.0e9\n  poisson_ratio: 0.35\n"
