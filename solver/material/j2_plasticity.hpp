@@ -28,6 +28,8 @@ struct J2Params {
   bool plastic = true;
   bool power_law = false;                  // power law: sigma_y = K (eps0 + ep)^n
   double strength = 0, eps0 = 0, exponent = 0;
+  static constexpr int kBinomialTerms = 32;
+  double binomial[kBinomialTerms] = {};     // C(n, k), the power law's return's series (j2_plasticity.cpp)
   // Johnson-Cook: A = yield0, B, n, C, rate0 (1/s), m, T_room and T_melt (K)
   bool johnson_cook = false;
   double jc_b = 0, jc_n = 1, jc_c = 0, jc_rate0 = 1, jc_m = 1, t_room = 293.15, t_melt = 0;
@@ -45,6 +47,8 @@ struct J2Params {
   static J2Params power(double E, double nu, double K, double eps0, double n) {
     J2Params p = from(E, nu, K * std::pow(eps0, n), 0, true);
     p.power_law = true, p.strength = K, p.eps0 = eps0, p.exponent = n;
+    p.binomial[0] = 1;
+    for (int k = 1; k < kBinomialTerms; ++k) p.binomial[k] = p.binomial[k - 1] * (n - k + 1) / k;
     return p;
   }
   static J2Params johnson_cook_law(double E, double nu, double A, double B, double n, double C, double rate0, double m,
