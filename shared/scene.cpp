@@ -751,6 +751,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     s.time.cfl = t.number("cfl", s.dies.empty() ? 0.9 : 0.5, {0, 2, true, false});
     // (docs/decisions.md, "The stable step from the highest frequency": not the default yet)
     s.time.stable_step = t.text("stable_step", "cells", {"cells", "frequency"});
+    s.time.dwell = t.text("dwell", "auto", {"auto", "off"});
     s.time.output_interval = t.number("output_interval", s.time.end / 10, {0, 1e6, true, false});
     s.time.mass_scaling_dt = t.number("mass_scaling_dt", 0.0, {0, 1});
     t.done();

@@ -257,6 +257,9 @@ struct Scene {
     std::string stable_step = "cells";
     double output_interval = 0;    // s
     double mass_scaling_dt = 0;    // s; > 0: density scaled so that the stable step is at least this
+    // a stage of a chain without dies, loads or moving faces: "auto" a dwell (the part set down, its
+    // temperature alone; solver/stage.hpp), "off" the part's motion goes on (an impact, a flight)
+    std::string dwell = "auto";
   } time;
 
   struct Output {

@@ -85,6 +85,7 @@ class Simulation {
   void displacement_update(double dt);
 
   void dwell();  // a stage in which nothing moves the part: the temperature alone, at the thermal step
+  void warn_if_moving(const Comm& comm);  // a dwell that sets down a part in motion
   void start_presses(double h_min);
   void check_reach();
   void rebind();  // after a reference update: what is sized by the rank's local particles
@@ -190,6 +191,19 @@ void Simulation::dwell() {
     if (heat_) heat_transfer();
     progress_->step(st_, dt, clock_.last_error, history_->row(), comm_.wtime());
   }
+}
+
+// A dwell sets the part down: said where it still moves as a dynamic event does (an impact's bar in
+// flight), not as a formed part at rest (kinetic energy within the quasi-static bound of its internal).
+void Simulation::warn_if_moving(const Comm& comm) {
+  const Energies e = compute_energies(md_, st_, st_.v, comm);
+  if (!(e.kinetic > kMaxQuasiStaticKineticRatio * e.internal)) return;
+  char text[400];
+  std::snprintf(text, sizeof text, "this stage has no dies, loads or moving faces, so it is a dwell that sets the part "
+                "down, but the part moves: %.3g J of kinetic energy against %.3g J internal (a formed part at rest "
+                "has under 5 %%); `--set time.dwell=off` goes on with its motion", e.kinetic, e.internal);
+  start_warnings_.push_back(text);
+  if (comm.rank() == 0) std::fprintf(stderr, "rksolve: warning: %s\n", text);
 }
 
 bool Simulation::update_due() const {
@@ -532,6 +546,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
       for (int i = 0; i < 3 && md_.owned[I]; ++i) kinetic += 0.5 * md_.mass[I] * st_.v[3 * I + i] * st_.v[3 * I + i];
     const double previous = kinetic * (before / md_.mass_scaling);  // (the ratio first: 1 exactly for the same scaling)
     st_.external_work += (dwell_ ? 0.0 : kinetic) - previous;
+    if (dwell_) warn_if_moving(comm);
     if (dwell_) std::fill(st_.v.begin(), st_.v.end(), 0.0);
     collectively(comm, [&] { return comm.rank() == 0 ? (write_stage_link(opt.case_dir, stage_), 0) : 0; });
   }

@@ -47,9 +47,10 @@ void check_boundaries(const Scene& now, const Scene& before, const std::string& 
                 "(they hold the part's displacement from the start of the chain)");
 }
 
-// Nothing moves the part and no load acts on it: only its temperature can change.
+// Nothing moves the part and no load acts on it: only its temperature can change (unless the scene
+// asks its motion to go on: time.dwell off).
 bool is_dwell(const Scene& scene) {
-  return scene.dies.empty() && scene.prescribed_faces.empty() && norm(scene.loads.gravity) == 0;
+  return scene.time.dwell == "auto" && scene.dies.empty() && scene.prescribed_faces.empty() && norm(scene.loads.gravity) == 0;
 }
 
 }  // namespace

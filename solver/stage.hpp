@@ -7,7 +7,9 @@
 //    the stage starts. A die the stage leaves out is gone; the work it did stays in the balance.
 //  - The part's essential conditions, symmetry planes and rigid walls are the previous stage's.
 //  - A stage without dies, loads or moving faces is a dwell (a transfer, a rest in air): the part is
-//    set down (its velocities zero) and only its temperature advances, at the thermal step.
+//    set down (its velocities zero) and only its temperature advances, at the thermal step; with
+//    time.dwell off its motion goes on instead (an impact, a flight). A part set down while it still
+//    moves (kinetic energy past 5 % of its internal) is warned of.
 // A stage whose scene changes nothing continues the previous run bitwise.
 #pragma once
 #include <string>

@@ -12,6 +12,9 @@ rest, Poisson's ratio 0, so the bars carry the one-dimensional bar wave, c0 = sq
   aluminium bar): the interface stress v Z_s Z_a / (Z_s + Z_a) at both bars' middles, and after the
   contact the striker at v (Z_s - Z_a) / (Z_s + Z_a) and the target at 2 v Z_s / (Z_s + Z_a) (Z = rho c0,
   the one-dimensional impact of two bars), 2 ranks bitwise equal to 1;
+- a chain (rksolve --from) through the impact: with time.dwell off the second stage goes on with the
+  bars' motion and ends bitwise equal to the uninterrupted run; by default a stage without dies is a
+  dwell, which sets the bars down, and says so in a warning (they move);
 - bad input: bodies that start closer than the contact's distance, a velocity for a body the geometry
   does not have, bodies with nodal integration."""
 import csv
@@ -137,6 +140,29 @@ order2 = np.argsort(other.point_data["global_id"].ravel())
 same = all(np.array_equal(frame.point_data[k][order], other.point_data[k][order2]) for k in frame.point_data if k != "rank")
 rkcase.check(same and (steel[1] / "tracks.csv").read_text() == (steel[2] / "tracks.csv").read_text(),
              "steel onto aluminium, 2 ranks: the tracks and every field of the last frame bitwise equal to 1 rank")
+
+# A chain through the impact (the 2-rank steel case, 20 us + 20 us): with time.dwell off the second stage
+# goes on with the motion, bitwise (the last history row, the last track row, the last frame); by default
+# it is a dwell that sets the moving bars down, with a warning
+first, second, dwelt = (tools.case(n) for n in ("chain_first", "chain_second", "chain_dwell"))
+for c in (first, second, dwelt):
+    tools.prep(c, 2, scene=GEO / "scene_steel_striker.yaml")
+tools.solve(first, 2, sets=["time.end=20e-6"])
+stage = ["mpirun", "-np", 2, tools.bin / "rksolve", "--quiet", "--from", first, "--set", "time.end=20e-6"]
+tools.run(stage[:4] + [second] + stage[4:] + ["--set", "time.dwell=off"])
+last_row = lambda path: path.read_text().splitlines()[-1]
+tools.post(first)  # (rkpost writes a stage's frames after its previous stage's)
+chained = last_frame(second)
+order4 = np.argsort(chained.point_data["global_id"].ravel())
+rkcase.check(last_row(second / "history.csv") == last_row(steel[2] / "history.csv")
+             and last_row(second / "tracks.csv") == last_row(steel[2] / "tracks.csv")
+             and all(np.array_equal(other.point_data[k][order2], chained.point_data[k][order4]) for k in other.point_data),
+             "a chain through the impact with time.dwell off: the second stage ends bitwise equal to the 40 us run")
+p = tools.run(stage[:4] + [dwelt] + stage[4:])
+link = json.loads((dwelt / "stage.json").read_text())
+rkcase.check(link["dwell"] and "is a dwell that sets the part down, but the part moves" in p.stderr
+             and "time.dwell=off" in p.stderr and float(last_row(dwelt / "history.csv").split(",")[2]) == 0,
+             f"by default the stage is a dwell, the bars set down, with a warning: {p.stderr.strip()}")
 
 # bad input
 near = tools.work / "near"
