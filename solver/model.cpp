@@ -156,10 +156,9 @@ void build_material_rows(Model& md, const LocalShapes& shapes) {
 J2Params law_of(const Material& mat) {
   J2Params law;
   if (mat.model == MaterialModel::johnson_cook) {
-    law = J2Params::johnson_cook_law(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress,
-                                             mat.hardening_coefficient, mat.hardening_exponent, mat.rate_coefficient,
-                                             mat.reference_strain_rate, mat.thermal_exponent, mat.room_temperature,
-                                             mat.melting_temperature);
+    law = J2Params::johnson_cook_law(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress, mat.hardening_coefficient,
+                                     mat.hardening_exponent, mat.rate_coefficient, mat.reference_strain_rate,
+                                     mat.thermal_exponent, mat.room_temperature, mat.melting_temperature);
   } else if (mat.model == MaterialModel::table) {
     law = J2Params::from(mat.youngs_modulus, mat.poisson_ratio, 0, 0, true);
     law.table = mat.table;
@@ -167,26 +166,21 @@ J2Params law_of(const Material& mat) {
   } else if (mat.model == MaterialModel::hansel_spittel) {
     const double a_m[9] = {mat.hs_a, mat.hs_m[0], mat.hs_m[1], mat.hs_m[2], mat.hs_m[3], mat.hs_m[4], mat.hs_m[6], mat.hs_m[7], mat.hs_m[8]};
     law = J2Params::hansel_spittel_law(mat.youngs_modulus, mat.poisson_ratio, a_m, mat.minimum_strain,
-                                               mat.minimum_strain_rate, mat.strain_offset, mat.strain_rate_offset);
+                                       mat.minimum_strain_rate, mat.strain_offset, mat.strain_rate_offset);
   } else {
     law = mat.model == MaterialModel::j2_power
-                      ? J2Params::power(mat.youngs_modulus, mat.poisson_ratio, mat.strength, mat.reference_strain, mat.exponent)
-                      : J2Params::from(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress, mat.hardening_modulus,
-                                       mat.model == MaterialModel::j2_linear);
+              ? J2Params::power(mat.youngs_modulus, mat.poisson_ratio, mat.strength, mat.reference_strain, mat.exponent)
+              : J2Params::from(mat.youngs_modulus, mat.poisson_ratio, mat.yield_stress, mat.hardening_modulus,
+                               mat.model == MaterialModel::j2_linear);
   }
   return law;
 }
 
 // The scene's materials as Model::materials orders them: the part's, then the bodies' own.
 std::vector<Solid> solids(const Scene& scene) {
-  std::vector<Solid> out;
-  auto add = [&](const Material& mat) {
-    const J2Params law = law_of(mat);
-    out.push_back({law, mat.density, law.bulk + 4.0 / 3.0 * law.shear});
-  };
-  add(scene.material);
+  std::vector<Solid> out{Solid::of(law_of(scene.material), scene.material.density)};
   for (const auto& b : scene.bodies)
-    if (b.material) add(*b.material);
+    if (b.material) out.push_back(Solid::of(law_of(*b.material), b.material->density));
   return out;
 }
 
@@ -306,12 +300,8 @@ void scale_mass(Model& md, double factor) {
   for (auto& m : md.mass) m *= factor;
 }
 
-}  // namespace rk
-
-namespace rk {
-
 void single_material(Model& md, const J2Params& law, double density) {
-  md.materials = {Solid{law, density, law.bulk + 4.0 / 3.0 * law.shear}};
+  md.materials = {Solid::of(law, density)};
   md.cell_material.assign(md.cells, 0);
   md.point_material.assign(md.m, 0);
 }

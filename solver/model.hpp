@@ -23,6 +23,7 @@ struct Solid {
   // the dilatational wave speed squared at volume ratio J (the 1e-12 floor keeps it real until the
   // stress update's health check stops a collapsed cell)
   double wave_speed2(double J) const { return wave_modulus * std::max(J, 1e-12) / density; }
+  static Solid of(const J2Params& law, double density) { return {law, density, law.bulk + 4.0 / 3.0 * law.shear}; }
 };
 
 struct Model {
