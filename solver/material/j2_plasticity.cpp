@@ -62,14 +62,16 @@ void set_lane(Sym& a, int l, const Eigen::Matrix3d& m) {
 
 // The rate-dependent return for one point: q - 3G dg = sigma_y(ep + dg, dg / dt, T). The residual falls
 // strictly with dg where sigma_y grows with strain and rate, and at dg0 = (q - sigma_y(ep, 0, T)) / 3G
-// it is <= 0, so the root lies in [0, dg0]: Newton in log dgamma from dg0, kept in the bracket by
-// bisection (docs/decisions.md, "Johnson-Cook": 6.8 iterations a return on the Johnson-Cook Taylor
-// bar). A law that softens with strain (Hansel-Spittel's m7 < 0) below its least rate can have its
-// root just past dg0: the bracket then widens.
-double rate_dependent_return(const J2Params& p, double q, double ep, const J2Params::AtTemperature& thermal, double dt) {
+// it is <= 0, so the root lies in [0, dg0]: Newton in log dgamma, kept in the bracket by bisection,
+// from the last increment's rate (`guess`, the point's plastic strain rate times dt) where that lies in
+// the bracket, else from dg0 (docs/decisions.md, "Johnson-Cook": 6.8 iterations a return from dg0 on
+// the Johnson-Cook Taylor bar). A law that softens with strain (Hansel-Spittel's m7 < 0) below its
+// least rate can have its root just past dg0: the bracket then widens.
+double rate_dependent_return(const J2Params& p, double q, double ep, const J2Params::AtTemperature& thermal, double dt,
+                             double guess) {
   double y, h, hr;
   p.flow_at(ep, 0.0, thermal, y, h, hr);
-  double lo = 0, hi = (q - y) / (3 * p.shear), dg = hi;
+  double lo = 0, hi = (q - y) / (3 * p.shear), dg = guess > 0 && guess < hi ? guess : hi;
   // 100 iterations only guard the loop: the bracket halves at least every other one
   for (int it = 0; it < 100; ++it) {
     const double rate = dt > 0 ? dg / dt : 0.0;
@@ -179,7 +181,7 @@ Lane return_map(const J2Params& p, Lane q, J2Batch& b) {
       const J2Params::AtTemperature thermal = p.at_temperature(b.T[l]);
       p.flow_at(b.ep[l], 0.0, thermal, y, h, hr);
       if (!(q[l] > y)) continue;
-      const double dg = rate_dependent_return(p, q[l], b.ep[l], thermal, b.dt);
+      const double dg = rate_dependent_return(p, q[l], b.ep[l], thermal, b.dt, b.rate_last[l] * b.dt);
       p.flow_at(b.ep[l] + dg, b.dt > 0 ? dg / b.dt : 0.0, thermal, y, h, hr);
       dgamma[l] = dg;
       b.ep[l] += dg;
@@ -251,7 +253,7 @@ void J2Params::johnson_cook_at(double ep, double rate, double thermal, double& y
 void J2Batch::at_rest(int l) {
   for (int i = 0; i < 9; ++i) F.v[i][l] = (i % 4 == 0);
   for (int i = 0; i < 6; ++i) cp_inv.v[i][l] = (i < 3);
-  ep[l] = 0;
+  ep[l] = 0, rate_last[l] = 0;
 }
 
 void j2_update(const J2Params& p, J2Batch& b) {

@@ -125,6 +125,7 @@ struct J2Batch {
   Lane dissipation;   // plastic work of this increment per reference volume (J/m^3)
   LaneMask plastic;   // the trial state was outside the yield surface (a return was made)
   Lane T{};           // temperature (K), rate-dependent laws only: the start of the increment's
+  Lane rate_last{};   // the last increment's plastic strain rate (1/s), rate-dependent laws only: the return's first guess (0: none)
   double dt = 0;      // the increment's time (s), rate-dependent laws only: rate = dgamma / dt (0: no rate effect)
   void at_rest(int lane);
 };

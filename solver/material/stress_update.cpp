@@ -30,6 +30,7 @@ void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n,
     for (int i = 0; i < 6; ++i) b.cp_inv.v[i][l] = st.cp_inv[6 * p + i];
     b.ep[l] = st.ep[p];
     if (!st.temperature.empty()) b.T[l] = st.temperature[p];
+    if (!st.plastic_rate.empty()) b.rate_last[l] = st.plastic_rate[p];
   }
   b.dt = st.dt_half;  // the increment from the last state took the last step (0 at the start: no rate)
 }
