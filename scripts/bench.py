@@ -12,7 +12,10 @@
 4. scaling: strong scaling of a large Taylor bar (>= 100k particles) over MPI ranks against Table 2 of
    Wang, Li, Han & Zhong 2007 (Development of parallel 3D RKPM meshless bulk forming simulation system), with the time in communication per step and the partition report;
 5. size: rkprep at 10k, 100k and 1M particles (wall time, peak memory), the 100k bar's peak with and without
-   a reference update, and the 1M bar run for a few steps on 2 ranks (memory per rank and per integration point).
+   a reference update, and the 1M bar run for a few steps on 2 ranks (memory per rank and per integration point);
+6. forming: the first part of three forming runs on one rank (the power law's upsetting, the hot
+   upsetting's Hansel-Spittel law with heat, the back extrusion's contact and reference updates): ns per
+   update and per particle step, the phases' shares, the die force reached.
 Timings are ratios within one run on one machine. Writes WORK/bench.md and WORK/bench.json.
   scripts/bench.py [--bin build/bin] [--work build/bench] [--skip calculix size ...]
 """
@@ -113,6 +116,31 @@ def paper_case(a, machine, sets=(), case=None):
             "bytes_per_update": cost["bytes"], "flops_per_update": cost["flops"], **limit,
             "fraction_of_limit": limit["limit_ns"] / s["ns_per_point_update"],
             "r_f_mm": m["footprint_radius_mm"], "L_f_mm": m["final_length_mm"]}
+
+
+# (label, scene, spacing (m), time.end (s)): the start of each forming case, about 10 s each in 2026-12
+FORMING = [("upsetting, power law, 1.25 mm", "upsetting/scene.yaml", "1.25e-3", "1.0e-3"),
+           ("hot upsetting, Hansel-Spittel and heat, 2.5 mm", "upsetting/scene_hot.yaml", "2.5e-3", "0.2"),
+           ("back extrusion, contact and reference updates, 2.5 mm", "back_extrusion/scene.yaml", "2.5e-3", "0.15e-3")]
+
+
+def forming(a):
+    rows = []
+    for k, (label, scene, spacing, end) in enumerate(FORMING):
+        case = a.work / f"forming_{k}"
+        run([a.bin / "rkprep", ROOT / "geometry" / scene, "--ranks", 1, "--out", case, "--quiet", "--force",
+             "--set", f"discretization.spacing={spacing}"])
+        s = solve(a, case, 1, f"time.end={end}")
+        phases = {name: p["max_s"] for name, p in s["phases"].items()}
+        loop = sum(phases.values())
+        force = [row.split(",") for row in (case / "history.csv").read_text().splitlines()]
+        column = next(i for i, name in enumerate(force[0]) if name.endswith(".force"))
+        rows.append({"case": label, "particles": s["particles"], "points": s["integration_points"], "steps": s["steps"],
+                     "solve_s": s["wall_s"], "ns_per_point_update": s["ns_per_point_update"],
+                     "ns_per_particle_step": s["ns_per_particle_step"],
+                     "shares": {name: t / loop for name, t in sorted(phases.items(), key=lambda p: -p[1])[:3]},
+                     "force_n": float(force[-1][column])})
+    return rows
 
 
 def calculix(a):
@@ -234,6 +262,15 @@ def report(res, a):
                        f"({r['update_peak_mb_max_rank'] / r['no_update_peak_mb_max_rank']:.2f}x; the old shape functions "
                        f"are released before the new are built), {r['update_s']:.2f} s per update."]
         md.append("")
+    if "forming" in res:
+        md += ["## Forming runs, their start, 1 rank", "",
+               "| case | particles | points | steps | solve (s) | ns/point update | ns/particle step | largest phases | "
+               "die force at the end (N) |", "|---|---|---|---|---|---|---|---|---|"]
+        for r in res["forming"]:
+            shares = ", ".join(f"{name} {100 * v:.0f} %" for name, v in r["shares"].items())
+            md.append(f"| {r['case']} | {r['particles']} | {r['points']} | {r['steps']} | {r['solve_s']:.1f} | "
+                      f"{r['ns_per_point_update']:.0f} | {r['ns_per_particle_step']:.0f} | {shares} | {r['force_n']:.6g} |")
+        md.append("")
     return "\n".join(md)
 
 
@@ -244,12 +281,12 @@ def main():
     ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2], help="scaling: rank counts")
     ap.add_argument("--spacing", default="0.18e-3", help="scaling: particle spacing (m)")
     ap.add_argument("--end", default="1e-6", help="scaling: simulated time (s)")
-    ap.add_argument("--skip", nargs="*", default=[], choices=["paper", "calculix", "scaling", "size", "million"])
+    ap.add_argument("--skip", nargs="*", default=[], choices=["paper", "calculix", "scaling", "size", "million", "forming"])
     a = ap.parse_args()
     a.work.mkdir(parents=True, exist_ok=True)
     res = {"machine": json.loads(run([a.bin / "rkmachine"], capture=True))}
     steps = {"paper": lambda: paper_settings(a, res["machine"]), "calculix": lambda: calculix(a),
-             "scaling": lambda: scaling(a), "size": lambda: sizes(a)}
+             "scaling": lambda: scaling(a), "size": lambda: sizes(a), "forming": lambda: forming(a)}
     for name, fn in steps.items():
         if name not in a.skip:
             print(f"bench: {name} ...", flush=True)
