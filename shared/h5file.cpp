@@ -26,6 +26,11 @@ struct Handle {  // closes any HDF5 object id on scope exit
 }  // namespace
 
 H5File::H5File(const std::string& path, Mode mode) : path_(path) {
+  // No clean-up by HDF5 at exit (before the library's first call): it closes what is left open, and a
+  // file whose close failed on a full disk crashed it there (a segfault in H5F__close_cb, HDF5 1.10)
+  // after the error was reported; every file here is closed by its owner.
+  static const bool no_atexit = H5dont_atexit() >= 0;
+  (void)no_atexit;
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // our messages, not HDF5's error stack
   if (mode == Mode::create) {
     file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);

@@ -4,7 +4,8 @@ good checkpoint, and the run restarts from it once there is room.
 300 KiB tmpfs that holds one set of checkpoints but not the next: the run stops, the first set
 survives complete, and the case, copied to a disk with room, restarts from it to the end.
 Every other file the programs write fails the same way, one error naming it: history.csv that
-cannot be made (3 ranks; rank 0 writes it), a restart whose history has other columns, solve.json,
+cannot be made (3 ranks; rank 0 writes it), a full disk on rank 2 only (its frames; 3 ranks, every
+rank stops with rank 2's message and none crashes), a restart whose history has other columns, solve.json,
 prep.json, rkpost's .pvd, a frame's .vtu that cannot take its name, and report.md.
 The tests run as root (the pipeline tests' MPI settings, tests/pipeline/rkcase.py), here and in CI,
 so the tmpfs mounts: a mount that fails is a failure of this test, not a reason to skip half of it."""
@@ -43,6 +44,25 @@ case = tools.case("full_history_dir")
 shutil.copytree(prep3, case)
 (case / "history.csv").mkdir()  # rank 0 cannot create it (the tests run as root: a mode would not stop it)
 stops(solve_args(case, 3), "history.csv: cannot write the history file", "history.csv cannot be made, 3 ranks")
+
+# a full disk on one rank only (3 ranks, rank 2's frames on a 64 KiB tmpfs): rank 2's write fails at the
+# second frame and every rank stops with its message; before HDF5's exit clean-up was turned off, rank 2
+# then crashed in it (signal 11) on the file whose close had failed
+subprocess.run(["umount", str(tools.work / "full_rank2" / "results" / "rank_0002")], capture_output=True)  # a stale mount
+case = tools.case("full_rank2")
+shutil.copytree(prep3, case)
+mnt = case / "results" / "rank_0002"
+mnt.mkdir(parents=True)
+mount = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=64k", "tmpfs", str(mnt)], capture_output=True, text=True)
+rkcase.check(mount.returncode == 0, f"a 64 KiB tmpfs mounted on rank 2's results (mount: exit {mount.returncode} {mount.stderr.strip()})")
+try:
+    stops(solve_args(case, 3), "results/rank_0002/frame_00001.h5.tmp: the file could not be completed",
+          "a full disk on rank 2 only, 3 ranks")
+    p = subprocess.run(["timeout", "60"] + [str(a) for a in solve_args(case, 3)], capture_output=True, text=True, env=tools.env)
+    rkcase.check(p.returncode == 1 and "Segmentation" not in p.stderr and "signal" not in p.stderr,
+                 f"a full disk on rank 2 only: exit 1, no crash ({p.returncode}, {p.stderr.strip()[-200:]})")
+finally:
+    subprocess.run(["umount", str(mnt)])
 
 case = tools.case("full_summary")
 shutil.copytree(prep, case)
