@@ -95,8 +95,8 @@ double rate_dependent_return(const J2Params& p, double q, double ep, const J2Par
 }
 
 // (1 + u)^n and its derivative n (1 + u)^(n-1) of the power law's exponent n (0 <= n <= 1), for
-// 0 <= u <= 0.25, by the binomial series sum_k C(n, k) u^k (|C(n, k)| <= 1): per lane the terms while u^k > 1e-17 (at most 28), each
-// lane's Horner recursion starting at its own last term.
+// 0 <= u <= 0.25, by the binomial series sum_k C(n, k) u^k (|C(n, k)| <= 1): per lane the terms while
+// u^k > 1e-17 (at most 28), each lane's Horner recursion starting at its own last term.
 void binomial_series(Lane u, const J2Params& p, Lane& value, Lane& slope) {
   const double* c = p.binomial;
   Lane m{};
