@@ -60,18 +60,18 @@ void set_lane(Sym& a, int l, const Eigen::Matrix3d& m) {
   a.v[3][l] = m(0, 1), a.v[4][l] = m(1, 2), a.v[5][l] = m(2, 0);
 }
 
-// The rate-dependent return for one point: q - 3G dg = sigma_y(ep + dg, dg / dt, T). The residual falls
-// strictly with dg where sigma_y grows with strain and rate, and at dg0 = (q - sigma_y(ep, 0, T)) / 3G
-// it is <= 0, so the root lies in [0, dg0]: Newton in log dgamma, kept in the bracket by bisection,
+// The rate-dependent return for one point: q - 3G dg = sigma_y(ep + dg, dg / dt, T), given the yield
+// check's y0 = sigma_y(ep, 0, T). The residual falls strictly with dg where sigma_y grows with strain
+// and rate, and at dg0 = (q - y0) / 3G it is <= 0, so the root lies in [0, dg0]: Newton in log dgamma,
+// kept in the bracket by bisection,
 // from the last increment's rate (`guess`, the point's plastic strain rate times dt) where that lies in
 // the bracket, else from dg0 (docs/decisions.md, "Johnson-Cook": 6.8 iterations a return from dg0 on
 // the Johnson-Cook Taylor bar). A law that softens with strain (Hansel-Spittel's m7 < 0) below its
 // least rate can have its root just past dg0: the bracket then widens.
-double rate_dependent_return(const J2Params& p, double q, double ep, const J2Params::AtTemperature& thermal, double dt,
-                             double guess) {
+double rate_dependent_return(const J2Params& p, double q, double ep, double y0, const J2Params::AtTemperature& thermal,
+                             double dt, double guess) {
   double y, h, hr;
-  p.flow_at(ep, 0.0, thermal, y, h, hr);
-  double lo = 0, hi = (q - y) / (3 * p.shear), dg = guess > 0 && guess < hi ? guess : hi;
+  double lo = 0, hi = (q - y0) / (3 * p.shear), dg = guess > 0 && guess < hi ? guess : hi;
   // 100 iterations only guard the loop: the bracket halves at least every other one
   for (int it = 0; it < 100; ++it) {
     const double rate = dt > 0 ? dg / dt : 0.0;
@@ -181,7 +181,7 @@ Lane return_map(const J2Params& p, Lane q, J2Batch& b) {
       const J2Params::AtTemperature thermal = p.at_temperature(b.T[l]);
       p.flow_at(b.ep[l], 0.0, thermal, y, h, hr);
       if (!(q[l] > y)) continue;
-      const double dg = rate_dependent_return(p, q[l], b.ep[l], thermal, b.dt, b.rate_last[l] * b.dt);
+      const double dg = rate_dependent_return(p, q[l], b.ep[l], y, thermal, b.dt, b.rate_last[l] * b.dt);
       p.flow_at(b.ep[l] + dg, b.dt > 0 ? dg / b.dt : 0.0, thermal, y, h, hr);
       dgamma[l] = dg;
       b.ep[l] += dg;
