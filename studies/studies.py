@@ -445,15 +445,26 @@ def report(study):
 
 
 def observed_order(rows, key):
-    """p from three successive resolutions h1 > h2 > h3: |f1 - f2| / |f2 - f3| = (h1/h2)^p for ratio-constant h."""
+    """p from three successive resolutions h1 > h2 > h3 of f = f* + C h^p: (f1 - f2) / (f2 - f3) = (h1^p - h2^p) /
+    (h2^p - h3^p), solved for p by bisection (the ratios of h need not be equal); "oscillates" where the two
+    differences have opposite signs (no order), "-" where no p in (0.01, 20) fits."""
     out = []
     for a, b, c in zip(rows, rows[1:], rows[2:]):
-        d1, d2 = a.get(key), b.get(key)
-        if None in (d1, d2, c.get(key)) or abs(b[key] - c[key]) == 0:
+        if None in (a.get(key), b.get(key), c.get(key)):
             continue
-        ratio = abs(a[key] - b[key]) / abs(b[key] - c[key])
-        h = (a["h"] / b["h"] + b["h"] / c["h"]) / 2
-        out.append(f"{b['h']}: {math.log(ratio) / math.log(h):.2f}" if ratio > 0 else f"{b['h']}: -")
+        d1, d2 = a[key] - b[key], b[key] - c[key]
+        if d1 * d2 <= 0:
+            out.append(f"{b['h']}: oscillates" if d1 * d2 < 0 else f"{b['h']}: -")
+            continue
+        fit = lambda q: (a["h"] ** q - b["h"] ** q) / (b["h"] ** q - c["h"] ** q) - d1 / d2  # rises with q
+        lo, hi = 0.01, 20.0
+        if fit(lo) * fit(hi) > 0:
+            out.append(f"{b['h']}: -")
+            continue
+        for _ in range(100):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (lo, mid) if fit(mid) > 0 else (mid, hi)
+        out.append(f"{b['h']}: {0.5 * (lo + hi):.2f}")
     return out
 
 

@@ -4,6 +4,7 @@ expected to get, every study writes its CSV, Markdown table and plots, and a sec
 nothing to redo."""
 import csv
 import subprocess
+import sys
 
 import rkcase
 
@@ -46,3 +47,12 @@ ratio = int(tradeoff["cfl 0.25"]["steps"]) / int(tradeoff["default"]["steps"])
 rkcase.check(3.2 < ratio < 4.0, f"tradeoffs: CFL 0.25 takes {ratio:.2f}x the steps of the default 0.9 (0.9 / 0.25 = 3.6)")
 again = subprocess.run(make + ["-q", "all"], capture_output=True, text=True, env=tools.env)
 rkcase.check(again.returncode == 0, "a second make has nothing to redo")
+
+# the observed order from three resolutions whose ratios differ (the convergence series' 0.3, 0.25,
+# 0.185 mm): f = 7.22 + 0.5 h^2 gives 2, and differences of opposite signs no order
+sys.path.insert(0, str(rkcase.ROOT / "studies"))
+from studies import observed_order  # noqa: E402
+levels = [{"h": h, "f": 7.22 + 0.5 * h ** 2} for h in (0.3, 0.25, 0.185)]
+wobble = [{"h": 0.3, "f": 7.232}, {"h": 0.25, "f": 7.238}, {"h": 0.185, "f": 7.228}]
+rkcase.check(observed_order(levels, "f") == ["0.25: 2.00"] and observed_order(wobble, "f") == ["0.25: oscillates"],
+             f"the observed order: {observed_order(levels, 'f')} (2 expected), {observed_order(wobble, 'f')}")
