@@ -67,12 +67,34 @@ def update_cost(neighbours, plastic_fraction):
     return {"bytes": 56 * neighbours + 584, "flops": 39 * neighbours + 580 + 430 * plastic_fraction}
 
 
-def machine_limit(machine, cost, points):
+# The update's three phases (solve.json's phases), the same tally split: the kinematics writes F (72 bytes),
+# the force reads P (72), the stress update the rest of the point state
+PHASES = {"deformation_gradient": lambda n, pf: {"bytes": 28 * n + 72, "flops": 18 * n},
+          "stress_update": lambda n, pf: {"bytes": 584 - 144, "flops": 580 + 430 * pf},
+          "internal_force": lambda n, pf: {"bytes": 28 * n + 72, "flops": 21 * n}}
+
+
+def phase_limits(machine, s, points):
+    """Each phase's time per update (its wall time over points x steps) against its machine limit."""
+    out = {}
+    step_bytes = update_cost(s["neighbours_per_point"], s["plastic_fraction"])["bytes"]
+    for name, cost in PHASES.items():
+        c = cost(s["neighbours_per_point"], s["plastic_fraction"])
+        limit = machine_limit(machine, c, points, step_bytes)
+        ns = 1e9 * s["phases"][name]["max_s"] / (points * s["steps"])
+        out[name] = {"ns": ns, "limit_ns": limit["limit_ns"], "bound": "memory" if limit["memory_ns"] >= limit["compute_ns"] else "compute",
+                     "fraction_of_limit": limit["limit_ns"] / ns}
+    return out
+
+
+def machine_limit(machine, cost, points, step_bytes=None):
     """The fastest one core could do one update: the larger of the memory time (at the bandwidth of
     the working set's level: in cache up to 16 MiB, else DRAM) and the compute time (at this build's
-    peak: the machine's vectors with RK_NATIVE, else SSE2; the core's AVX-512 FMA peak for reference)."""
+    peak: the machine's vectors with RK_NATIVE, else SSE2; the core's AVX-512 FMA peak for reference).
+    step_bytes: the bytes the whole step touches per point, when `cost` is one phase's (the other
+    phases evict its data between steps)."""
     bw = machine["triad_gb_per_s"]
-    working_set = cost["bytes"] * points
+    working_set = (step_bytes or cost["bytes"]) * points
     gbs = bw["16384_kib"] if working_set <= 16 << 20 else bw["1048576_kib"]
     t_mem = cost["bytes"] / gbs
     t_flop = cost["flops"] / machine["gflop_per_s_this_build"]
@@ -115,6 +137,7 @@ def paper_case(a, machine, sets=(), case=None):
             "neighbours_per_point": s["neighbours_per_point"], "plastic_fraction": s["plastic_fraction"],
             "bytes_per_update": cost["bytes"], "flops_per_update": cost["flops"], **limit,
             "fraction_of_limit": limit["limit_ns"] / s["ns_per_point_update"],
+            "phases": phase_limits(machine, s, s["integration_points"]),
             "r_f_mm": m["footprint_radius_mm"], "L_f_mm": m["final_length_mm"]}
 
 
@@ -223,6 +246,14 @@ def report(res, a):
                    f"{s['memory_ns']:.0f} at {s['bandwidth_gb_per_s']:.0f} GB/s, compute {s['compute_ns']:.0f}; AVX-512 "
                    f"{s.get('compute_ns_avx512', float('nan')):.0f}) | {100 * s['fraction_of_limit']:.0f} % | "
                    f"{s['r_f_mm']:.3f}, {s['L_f_mm']:.3f} | {100 * s['error']:.2f} % |"]
+        md += ["", "Each phase of an update against its own limit (the tally split: the kinematics reads the neighbours' "
+               "gradients and writes F, the force reads them again with P, the stress update the rest of the state):", "",
+               "| setting | " + " | ".join(f"{name}: ns, limit, fraction" for name in PHASES) + " |",
+               "|---|" + "---|" * len(PHASES)]
+        for s in res["paper"]:
+            md.append(f"| {s['setting']} | " + " | ".join(
+                f"{p['ns']:.0f}, {p['limit_ns']:.0f} ({p['bound']}), {100 * p['fraction_of_limit']:.0f} %"
+                for p in s["phases"].values()) + " |")
         d = res["paper"][0]
         under = [s["setting"] for s in res["paper"] if s["total_s"] < 2] or ["none"]
         md += ["", "Error: |r_f/7.22 - 1| + |L_f/21.45 - 1| (converged FE). Targets: under 300 ns per update at about 30 "
