@@ -141,7 +141,7 @@ def paper_case(a, machine, sets=(), case=None):
             "r_f_mm": m["footprint_radius_mm"], "L_f_mm": m["final_length_mm"]}
 
 
-# (label, scene, spacing (m), time.end (s)): the start of each forming case, about 10 s each in 2026-12
+# (label, scene, spacing (m), time.end (s)): the start of each forming case, 5-14 s each (2026-12-04, beside other work)
 FORMING = [("upsetting, power law, 1.25 mm", "upsetting/scene.yaml", "1.25e-3", "1.0e-3"),
            ("hot upsetting, Hansel-Spittel and heat, 2.5 mm", "upsetting/scene_hot.yaml", "2.5e-3", "0.2"),
            ("back extrusion, contact and reference updates, 2.5 mm", "back_extrusion/scene.yaml", "2.5e-3", "0.15e-3")]

@@ -367,6 +367,14 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<Override>&
 }
 
 namespace {
+// The body of geometry.bodies that the list entry `b` names by its key `name`; one error naming the key if none.
+Scene::Body& named_body(Scene& s, Section& b) {
+  const std::string named = b.text("name", std::nullopt);
+  auto it = std::find_if(s.bodies.begin(), s.bodies.end(), [&](const Scene::Body& o) { return o.name == named; });
+  if (it == s.bodies.end()) throw Error(b.where_of("name") + ": no body '" + named + "' in geometry.bodies");
+  return *it;
+}
+
 // The material keys of the map `key` of `parent` (the part's `material`, a body's own), read over the
 // keys of the file its `library` names (geometry/materials/, relative to the scene's folder `dir`).
 Material read_material(Section& parent, const std::string& key, const std::filesystem::path& dir, const std::string& name) {
@@ -561,12 +569,10 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
   }
   s.material = read_material(top, "material", s.dir, name);
   top.list("bodies", [&](Section& b) {  // a body's own material (the part's where it names none)
-    const std::string named = b.text("name", std::nullopt);
-    auto it = std::find_if(s.bodies.begin(), s.bodies.end(), [&](const Scene::Body& o) { return o.name == named; });
-    if (it == s.bodies.end()) throw Error(b.where_of("name") + ": no body '" + named + "' in geometry.bodies");
-    if (it->material) throw Error(b.where_of("name") + ": body '" + named + "' is listed twice");
-    it->material = std::make_shared<const Material>(read_material(b, "material", s.dir, name));
-    if (s.material.thermal() || it->material->thermal())  // (the rate- and temperature-dependent laws need it)
+    Scene::Body& body = named_body(s, b);
+    if (body.material) throw Error(b.where_of("name") + ": body '" + body.name + "' is listed twice");
+    body.material = std::make_shared<const Material>(read_material(b, "material", s.dir, name));
+    if (s.material.thermal() || body.material->thermal())  // (the rate- and temperature-dependent laws need it)
       throw Error(b.where_of("material") + ": a body's own material is offered without temperature only "
                   "(material.specific_heat and the laws that need it): the heat model holds one material; "
                   "leave it out and the body takes the part's");
@@ -575,10 +581,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     Section ic = top.section("initial_conditions");
     s.initial.velocity = ic.vec3("velocity", Vec3{0, 0, 0});
     ic.list("bodies", [&](Section& b) {  // each body's own velocity (the part's is `velocity` above)
-      const std::string named = b.text("name", std::nullopt);
-      auto it = std::find_if(s.bodies.begin(), s.bodies.end(), [&](const Scene::Body& o) { return o.name == named; });
-      if (it == s.bodies.end()) throw Error(b.where_of("name") + ": no body '" + named + "' in geometry.bodies");
-      it->velocity = b.vec3("velocity", Vec3{0, 0, 0});
+      named_body(s, b).velocity = b.vec3("velocity", Vec3{0, 0, 0});
     });
     Section grad = ic.section("velocity_gradient");  // rows: the gradients of v_x, v_y, v_z
     for (int i = 0; i < 3; ++i) {

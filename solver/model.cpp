@@ -176,11 +176,16 @@ J2Params law_of(const Material& mat) {
   return law;
 }
 
-// The scene's materials as Model::materials orders them: the part's, then the bodies' own.
-std::vector<Solid> solids(const Scene& scene) {
+// The scene's materials as Model::materials orders them (the part's, then the bodies' own), and each
+// body's index among them in `body_material` (body 0 the part).
+std::vector<Solid> solids(const Scene& scene, std::vector<std::uint8_t>& body_material) {
   std::vector<Solid> out{Solid::of(law_of(scene.material), scene.material.density)};
-  for (const auto& b : scene.bodies)
-    if (b.material) out.push_back(Solid::of(law_of(*b.material), b.material->density));
+  body_material.assign(scene.bodies.size() + 1, 0);
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    if (const auto& mat = scene.bodies[b].material) {
+      body_material[b + 1] = std::uint8_t(out.size());
+      out.push_back(Solid::of(law_of(*mat), mat->density));
+    }
   return out;
 }
 
@@ -198,10 +203,8 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   md.spacing = sub.spacing;
   md.spacing0 = sub.spacing;
   md.owner = sub.owner;
-  md.materials = solids(scene);
-  std::vector<std::uint8_t> body_material(scene.bodies.size() + 1, 0);  // body -> index in md.materials
-  for (std::size_t b = 0, k = 1; b < scene.bodies.size(); ++b)
-    if (scene.bodies[b].material) body_material[b + 1] = std::uint8_t(k++);
+  std::vector<std::uint8_t> body_material;  // body -> index in md.materials
+  md.materials = solids(scene, body_material);
   md.mass.resize(md.n);
   md.owned.resize(md.n);
   md.surface.resize(md.n);

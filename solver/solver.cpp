@@ -546,8 +546,10 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
       for (int i = 0; i < 3 && md_.owned[I]; ++i) kinetic += 0.5 * md_.mass[I] * st_.v[3 * I + i] * st_.v[3 * I + i];
     const double previous = kinetic * (before / md_.mass_scaling);  // (the ratio first: 1 exactly for the same scaling)
     st_.external_work += (dwell_ ? 0.0 : kinetic) - previous;
-    if (dwell_) warn_if_moving(comm);
-    if (dwell_) std::fill(st_.v.begin(), st_.v.end(), 0.0);
+    if (dwell_) {
+      warn_if_moving(comm);
+      std::fill(st_.v.begin(), st_.v.end(), 0.0);
+    }
     collectively(comm, [&] { return comm.rank() == 0 ? (write_stage_link(opt.case_dir, stage_), 0) : 0; });
   }
   results_ = collectively(comm, [&] {

@@ -44,7 +44,8 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
   const std::size_t slaves = particles_.size() + md.m;
   mass_.resize(slaves), N_sum_.assign(slaves, 0.0), N_max_.assign(slaves, 0.0);
   for (std::size_t s = 0; s < slaves; ++s) {
-    mass_[s] = s < particles_.size() ? md.mass[particles_[s]] : md.material_at(s - particles_.size()).density * md.weight[s - particles_.size()];
+    const std::size_t g = s - particles_.size();  // (a point's, for s past the particles)
+    mass_[s] = s < particles_.size() ? md.mass[particles_[s]] : md.material_at(g).density * md.weight[g];
     const Row r = row(md, s);
     for (std::int32_t k = 0; k < r.size; ++k) N_sum_[s] += std::abs(r.N[k]), N_max_[s] = std::max(N_max_[s], std::abs(r.N[k]));
   }

@@ -63,10 +63,9 @@ void set_lane(Sym& a, int l, const Eigen::Matrix3d& m) {
 // The rate-dependent return for one point: q - 3G dg = sigma_y(ep + dg, dg / dt, T), given the yield
 // check's y0 = sigma_y(ep, 0, T). The residual falls strictly with dg where sigma_y grows with strain
 // and rate, and at dg0 = (q - y0) / 3G it is <= 0, so the root lies in [0, dg0]: Newton in log dgamma,
-// kept in the bracket by bisection,
-// from the last increment's rate (`guess`, the point's plastic strain rate times dt) where that lies in
-// the bracket, else from dg0 (docs/decisions.md, "Johnson-Cook": 6.8 iterations a return from dg0 on
-// the Johnson-Cook Taylor bar). A law that softens with strain (Hansel-Spittel's m7 < 0) below its
+// kept in the bracket by bisection, from the last increment's rate (`guess`, the point's plastic strain
+// rate times dt) where that lies in the bracket, else from dg0 (docs/decisions.md, "Johnson-Cook": 6.8
+// iterations a return from dg0 on the Johnson-Cook Taylor bar). A law that softens with strain (Hansel-Spittel's m7 < 0) below its
 // least rate can have its root just past dg0: the bracket then widens.
 double rate_dependent_return(const J2Params& p, double q, double ep, double y0, const J2Params::AtTemperature& thermal,
                              double dt, double guess) {

@@ -95,6 +95,13 @@ void accumulate_damage(const Model& md, State& st, std::size_t g0, std::size_t g
   }
 }
 
+// Without F-bar, the end of the batch that starts at point g0: at most kLanes points, of one material.
+std::size_t batch_end(const Model& md, std::size_t g0) {
+  std::size_t g1 = g0 + 1;
+  while (g1 < std::min(md.m, g0 + kLanes) && md.point_material[g1] == md.point_material[g0]) ++g1;
+  return g1;
+}
+
 }  // namespace
 
 StressHealth update_stress(const Model& md, State& st, const PressureBound& bound) {
@@ -107,8 +114,7 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
   // go kLanes at a time whatever their cells, of one material each batch
   for (std::size_t c = 0, g0 = 0, g1 = 0; md.fbar ? c < md.cells : g1 < md.m; ++c, g0 = g1) {
     if (md.fbar) g0 = std::size_t(md.cell_points[c]), g1 = std::size_t(md.cell_points[c + 1]);
-    else
-      for (g1 = g0 + 1; g1 < std::min(md.m, g0 + kLanes) && md.point_material[g1] == md.point_material[g0];) ++g1;
+    else g1 = batch_end(md, g0);
     if (g0 == g1) continue;
     const J2Params& law = md.material_at(g0).law;  // (a cell never spans two bodies)
     bool cell_ok = true;
