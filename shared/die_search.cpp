@@ -9,6 +9,27 @@ namespace {
 
 inline double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
+// The squared distance from x to the box lo[3], hi[3]: a lower bound on its triangle's, cheap to reject with.
+template <class Real>
+inline double box_distance2(const Real* box, const double x[3]) {
+  double box2 = 0;
+  for (int d = 0; d < 3; ++d) {
+    const double out = std::max({double(box[d]) - x[d], x[d] - double(box[3 + d]), 0.0});
+    box2 += out * out;
+  }
+  return box2;
+}
+
+// x as a float no larger (below) or no smaller (above): a float box that holds the double one
+float float_below(double x) {
+  const float f = float(x);
+  return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+float float_above(double x) {
+  const float f = float(x);
+  return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
 }  // namespace
 
 void closest_point_on_triangle(const double p[3], const double a[3], const double b[3], const double c[3],
@@ -48,9 +69,10 @@ void closest_point_on_triangle(const double p[3], const double a[3], const doubl
   for (int i = 0; i < 3; ++i) out[i] = a[i] + ab[i] * v + ac[i] * w;
 }
 
-DieSearch::DieSearch(const DieSurface& s, double margin) : s_(s) {
+DieSearch::DieSearch(const DieSurface& s, double search_margin, double skin) : s_(s) {
   const std::size_t nt = s.triangles.size() / 3;
-  margin_ = margin;
+  margin_ = search_margin, skin_ = skin;
+  const double margin = search_margin + skin;  // the bins' reach
   box_.resize(6 * nt);  // per triangle: lo[3], hi[3]
   double hi[3], edges = 0;
   for (int d = 0; d < 3; ++d) lo_[d] = std::numeric_limits<double>::infinity(), hi[d] = -lo_[d];
@@ -109,28 +131,64 @@ std::int64_t DieSearch::bin(const double x[3], int d) const {
   return std::clamp<std::int64_t>(std::int64_t(std::floor((x[d] - lo_[d]) / h_)), 0, dims_[d] - 1);
 }
 
-DieHit DieSearch::nearest(const double x[3]) const {
-  DieHit hit;
+std::int64_t DieSearch::bin_of(const double x[3]) const {
   for (int d = 0; d < 3; ++d)
-    if (x[d] < lo_[d] || x[d] > lo_[d] + double(dims_[d]) * h_) return hit;  // beyond every triangle's margin
-  const std::int64_t b = (bin(x, 2) * dims_[1] + bin(x, 1)) * dims_[0] + bin(x, 0);
+    if (x[d] < lo_[d] || x[d] > lo_[d] + double(dims_[d]) * h_) return -1;
+  return (bin(x, 2) * dims_[1] + bin(x, 1)) * dims_[0] + bin(x, 0);
+}
 
+DieHit DieSearch::nearest(const double x[3]) const { return nearest(x, -1); }
+
+DieHit DieSearch::nearest(const double x[3], std::int32_t hint) const {
+  const std::int64_t b = bin_of(x);
+  if (b < 0) return DieHit{};
+  return nearest_among(x, &items_[std::size_t(start_[b])], nullptr, start_[b + 1] - start_[b], hint);
+}
+
+int DieSearch::candidates(const double x[3], double skin, std::int32_t* out, float* boxes, int capacity) const {
+  const std::int64_t b = bin_of(x);
+  if (b < 0) return 0;
+  // (the reach a little past margin + skin: a slave at the skin's distance stays covered through round-off)
+  const double reach = (margin_ + skin) * (margin_ + skin) * (1 + 1e-9) + 1e-18;
+  int count = 0;
+  double c[3];
+  for (std::int32_t k = start_[b]; k < start_[b + 1]; ++k)
+    if (const std::int32_t t = items_[k]; box_distance2(&box_[6 * std::size_t(t)], x) <= reach && distance2(t, x, c) <= reach) {
+      if (count == capacity) return -1;
+      for (int d = 0; d < 3; ++d)
+        boxes[6 * count + d] = float_below(box_[6 * t + d]), boxes[6 * count + 3 + d] = float_above(box_[6 * t + 3 + d]);
+      out[count++] = t;
+    }
+  return count;
+}
+
+double DieSearch::distance2(std::int32_t t, const double x[3], double c[3]) const {
+  closest_point_on_triangle(x, s_.corner(std::size_t(t), 0), s_.corner(std::size_t(t), 1), s_.corner(std::size_t(t), 2), c);
+  return (x[0] - c[0]) * (x[0] - c[0]) + (x[1] - c[1]) * (x[1] - c[1]) + (x[2] - c[2]) * (x[2] - c[2]);
+}
+
+DieHit DieSearch::nearest_among(const double x[3], const std::int32_t* triangles, const float* boxes, int count,
+                                std::int32_t hint) const {
+  DieHit hit;
   double best = std::numeric_limits<double>::infinity(), best_point[3] = {0, 0, 0};
   const double reach = margin_ * margin_;  // nothing beyond the margin counts
+  // The hint's distance bounds the nearest's: a triangle whose box is farther (by more than the ties'
+  // tolerance) would at most have been a best that a closer one then replaced, which changes nothing.
+  double bound = std::numeric_limits<double>::infinity();
+  if (hint >= 0) {
+    double c[3];
+    bound = distance2(hint, x, c) * (1 + 1e-9) + 1e-17;
+  }
   double pseudo[3] = {0, 0, 0};
   // Squared distances within 1e-12 relative (1e-18 m^2 absolute) are equal to round-off: one point.
-  for (std::int32_t k = start_[b]; k < start_[b + 1]; ++k) {
-    const std::int32_t t = items_[k];
-    double box2 = 0;  // squared distance to the triangle's box: a lower bound, cheap to reject with
-    for (int d = 0; d < 3; ++d) {
-      const double out = std::max({box_[6 * t + d] - x[d], x[d] - box_[6 * t + 3 + d], 0.0});
-      box2 += out * out;
-    }
-    if (box2 > reach || (std::isfinite(best) && box2 > best * (1 + 1e-12) + 1e-18)) continue;
+  for (int k = 0; k < count; ++k) {
+    const std::int32_t t = triangles[k];
+    // (a float box holds the triangle's: a triangle it keeps that the exact box would reject is farther
+    // than the best so far and changes nothing)
+    const double box2 = boxes ? box_distance2(&boxes[6 * k], x) : box_distance2(&box_[6 * std::size_t(t)], x);
+    if (box2 > reach || box2 > bound || (std::isfinite(best) && box2 > best * (1 + 1e-12) + 1e-18)) continue;
     double c[3];
-    closest_point_on_triangle(x, &s_.vertices[3 * s_.triangles[3 * t]], &s_.vertices[3 * s_.triangles[3 * t + 1]],
-                              &s_.vertices[3 * s_.triangles[3 * t + 2]], c);
-    const double d2 = (x[0] - c[0]) * (x[0] - c[0]) + (x[1] - c[1]) * (x[1] - c[1]) + (x[2] - c[2]) * (x[2] - c[2]);
+    const double d2 = distance2(t, x, c);
     if (d2 > reach) continue;
     const double tol = std::isfinite(best) ? 1e-18 + 1e-12 * best : 0.0;
     // the triangle's weight in the pseudo-normal: its angle where the closest point is one of its

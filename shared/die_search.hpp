@@ -1,7 +1,7 @@
 // Closest-point queries against a rigid die surface (triangles with outward normals), in the die's
 // own frame: the dies only translate, so the bucket grid is built once and never refreshed. Each
-// triangle is listed in every bin its box (grown by the search margin) touches, so a query reads one
-// bin however large the die's triangles are.
+// triangle is listed in every bin its box (grown by the search margin and the skin) touches, so a
+// query reads one bin however large the die's triangles are.
 // Used by rkprep (a workpiece must not start inside a die) and rksolve (the contact of the material
 // points, particles and integration points, with the die's triangles).
 #pragma once
@@ -28,21 +28,37 @@ void closest_point_on_triangle(const double p[3], const double a[3], const doubl
 
 class DieSearch {
  public:
-  DieSearch(const DieSurface& surface, double margin);
+  // skin: the farthest a point may move from where candidates() gathered its triangles (0: not used)
+  DieSearch(const DieSurface& surface, double margin, double skin = 0);
   // The closest point among the triangles within the margin of x (no allocation).
   DieHit nearest(const double x[3]) const;
+  // The triangles that can lie within the margin of any point within `skin` (<= skin()) of x (those
+  // within margin + skin of x), ascending, into out; their count, or -1 where more than capacity.
+  // Their boxes go to boxes (lo[3], hi[3] each, rounded outward to float): read with the triangles,
+  // in one stream, instead of from the die's arrays.
+  int candidates(const double x[3], double skin, std::int32_t* out, float* boxes, int capacity) const;
+  // nearest(x) over the given triangles, ascending (boxes: candidates()', or null for the die's own):
+  // bit for bit nearest(x)'s answer where they hold every triangle within the margin of x
+  // (candidates() of a point within the skin of x). hint: a triangle likely the nearest (x's last
+  // hit, or -1): its distance rejects the farther triangles before their closest points are sought.
+  DieHit nearest_among(const double x[3], const std::int32_t* triangles, const float* boxes, int count,
+                       std::int32_t hint = -1) const;
+  DieHit nearest(const double x[3], std::int32_t hint) const;  // nearest(x), with a hint
   std::size_t triangles() const { return normal_.size() / 3; }
   double margin() const { return margin_; }  // a point nearest() does not find is farther than this
+  double skin() const { return skin_; }
 
  private:
   const DieSurface& s_;
   std::vector<double> normal_, box_;  // per triangle: unit normal; lo[3], hi[3]
   std::vector<double> angle_;         // per triangle: its angle at each corner (rad)
-  double margin_ = 0;
+  double margin_ = 0, skin_ = 0;
   double lo_[3]{}, h_ = 1;
   std::int64_t dims_[3]{1, 1, 1};
   std::vector<std::int32_t> start_, items_;  // CSR: triangles per bin
   std::int64_t bin(const double x[3], int d) const;
+  double distance2(std::int32_t t, const double x[3], double c[3]) const;  // to triangle t; c its closest point
+  std::int64_t bin_of(const double x[3]) const;  // -1: x is beyond every triangle's margin and skin
 };
 
 }  // namespace rk

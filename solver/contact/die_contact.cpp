@@ -39,9 +39,11 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
     }
   // Penetrations stay far below half a spacing (the penalty is stiff); deeper ones would be missed.
   margin_ = 0.5 * hmax;
-  for (const auto& s : surfaces_) search_.push_back(std::make_unique<DieSearch>(s, margin_));
+  // a slave's candidate triangles are gathered again once it has moved half the margin (die_candidates.hpp)
+  for (const auto& s : surfaces_) search_.push_back(std::make_unique<DieSearch>(s, margin_, 0.25 * margin_));
 
   const std::size_t slaves = particles_.size() + md.m;
+  candidates_ = DieCandidates(slaves, dies_.size());
   mass_.resize(slaves), N_sum_.assign(slaves, 0.0), N_max_.assign(slaves, 0.0);
   for (std::size_t s = 0; s < slaves; ++s) {
     const std::size_t g = s - particles_.size();  // (a point's, for s past the particles)
@@ -165,11 +167,11 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     const double clear = 1e-6 * margin;  // only a slave at least this far out is skipped
     DieTotals& tot = totals_[die ? k : planes_[k - dies_.size()].total];
     // The obstacle's closest point to x (current), in its own frame.
-    auto nearest = [&](const double* x) {
+    auto nearest = [&](std::size_t s, const double* x) {
       if (die) {
         double y[3];
         for (int i = 0; i < 3; ++i) y[i] = x[i] - stroke * mo->direction[i];
-        return search_[k]->nearest(y);
+        return candidates_.nearest(*search_[k], k, s, y);
       }
       const Plane& p = planes_[k - dies_.size()];
       DieHit hit{true, 0, {p.normal[0], p.normal[1], p.normal[2]}, -1};
@@ -182,7 +184,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
       if (c > clear) continue;
       double x[3];
       material_point(md, st, s, x);
-      const DieHit hit = nearest(x);
+      const DieHit hit = nearest(s, x);
       c = hit.found ? std::max(hit.gap, 0.0) : margin;
       if (!hit.found || hit.gap >= 0) continue;
       const double depth = -hit.gap, m = mass_[s];

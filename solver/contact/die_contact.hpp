@@ -19,6 +19,7 @@
 #include <memory>
 #include <vector>
 
+#include "contact/die_candidates.hpp"
 #include "die_search.hpp"
 #include "parallel/fixed_point.hpp"
 #include "model.hpp"
@@ -126,6 +127,7 @@ class DieContact {
   std::vector<Die> dies_;
   std::vector<DieSurface> surfaces_;
   std::vector<std::unique_ptr<DieSearch>> search_;
+  DieCandidates candidates_;  // the slaves' triangles near them
   struct Plane {          // a fixed frictionless plane: a rigid wall or a symmetry plane
     double point[3], normal[3];  // the normal toward the material
     std::size_t total;           // its entry in totals_

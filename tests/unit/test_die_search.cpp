@@ -1,9 +1,15 @@
-// Contact geometry: closest point on a triangle (every Voronoi region) and the signed gap to a
-// closed die surface (outside > 0, inside < 0, including near edges and corners).
+// Contact geometry: closest point on a triangle (every Voronoi region), the signed gap to a closed
+// die surface (outside > 0, inside < 0, including near edges and corners), and the slaves' candidate
+// lists against the bins.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <vector>
 
+#include "contact/die_candidates.hpp"
 #include "die_search.hpp"
 
 namespace {
@@ -90,3 +96,65 @@ TEST(DieSearch, PseudoNormalAtAVertexWeightedByAngles) {
 }
 
 }  // namespace
+
+// The unit cube with each face cut into n x n squares, two triangles each.
+rk::DieSurface fine_cube(int n) {
+  rk::DieSurface s;
+  auto vertex = [&](double x, double y, double z) {
+    s.vertices.insert(s.vertices.end(), {x, y, z});
+    return int(s.vertices.size() / 3 - 1);
+  };
+  // each face: an origin, two edge directions (counter-clockwise seen from outside)
+  const double faces[6][9] = {{0, 0, 0, 0, 1, 0, 1, 0, 0}, {0, 0, 1, 1, 0, 0, 0, 1, 0}, {0, 0, 0, 1, 0, 0, 0, 0, 1},
+                              {0, 1, 0, 0, 0, 1, 1, 0, 0}, {0, 0, 0, 0, 0, 1, 0, 1, 0}, {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+  for (const auto& f : faces) {
+    std::vector<int> id;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        const double a = double(i) / n, b = double(j) / n;
+        id.push_back(vertex(f[0] + a * f[3] + b * f[6], f[1] + a * f[4] + b * f[7], f[2] + a * f[5] + b * f[8]));
+      }
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int p = id[j * (n + 1) + i], q = id[j * (n + 1) + i + 1], r = id[(j + 1) * (n + 1) + i + 1],
+                  t = id[(j + 1) * (n + 1) + i];
+        s.triangles.insert(s.triangles.end(), {p, q, r, p, r, t});
+      }
+  }
+  return s;
+}
+
+// A slave's candidate triangles answer as its bin does, bit for bit, whether the slave stays within the
+// skin (the list kept) or leaves it (gathered again), inside the die or out, at faces, edges and
+// corners, and where a fine mesh puts more triangles near it than a list holds (the skin shrinks).
+TEST(DieCandidates, TheSameHitAsTheBinsAlongEveryPath) {
+  for (int n : {4, 20}) {
+    const rk::DieSurface cube = fine_cube(n);
+    const rk::DieSearch search(cube, 0.1, 0.05);
+    const int slaves = 300, steps = 200;
+    rk::DieCandidates lists(slaves, 1);
+    std::uint64_t seed = 12345;
+    auto uniform = [&] {  // in [0, 1)
+      seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+      return double(seed >> 11) * 0x1.0p-53;
+    };
+    std::vector<double> x(3 * slaves);
+    for (double& v : x) v = -0.15 + 1.3 * uniform();
+    int found = 0, inside = 0;
+    for (int step = 0; step < steps; ++step)
+      for (int s = 0; s < slaves; ++s) {
+        double* y = &x[3 * std::size_t(s)];
+        const double stride = step % 50 == 49 ? 0.2 : 0.004;  // now and then a jump past the skin
+        for (int i = 0; i < 3; ++i) y[i] = std::clamp(y[i] + stride * (2 * uniform() - 1), -0.15, 1.15);
+        const rk::DieHit a = search.nearest(y), b = lists.nearest(search, 0, std::size_t(s), y);
+        ASSERT_EQ(a.found, b.found) << "slave " << s << " step " << step;
+        if (!a.found) continue;
+        ++found, inside += a.gap < 0;
+        ASSERT_EQ(a.triangle, b.triangle) << "slave " << s << " step " << step;
+        ASSERT_EQ(std::memcmp(&a.gap, &b.gap, sizeof a.gap), 0) << "slave " << s << " step " << step;
+        ASSERT_EQ(std::memcmp(a.normal, b.normal, sizeof a.normal), 0) << "slave " << s << " step " << step;
+      }
+    EXPECT_GT(found, slaves * steps / 4) << n;  // the paths stay near the surface: most lookups find it
+    EXPECT_GT(inside, slaves * steps / 20) << n;
+  }
+}
