@@ -60,37 +60,81 @@ void set_lane(Sym& a, int l, const Eigen::Matrix3d& m) {
   a.v[3][l] = m(0, 1), a.v[4][l] = m(1, 2), a.v[5][l] = m(2, 0);
 }
 
-// The rate-dependent return for one point: q - 3G dg = sigma_y(ep + dg, dg / dt, T), given the yield
-// check's y0 = sigma_y(ep, 0, T). The residual falls strictly with dg where sigma_y grows with strain
-// and rate, and at dg0 = (q - y0) / 3G it is <= 0, so the root lies in [0, dg0]: Newton in log dgamma,
-// kept in the bracket by bisection, from the last increment's rate (`guess`, the point's plastic strain
-// rate times dt) where that lies in the bracket, else from dg0 (docs/decisions.md, "Johnson-Cook": 6.8
-// iterations a return from dg0 on the Johnson-Cook Taylor bar). A law that softens with strain (Hansel-Spittel's m7 < 0) below its
-// least rate can have its root just past dg0: the bracket then widens.
-double rate_dependent_return(const J2Params& p, double q, double ep, double y0, const J2Params::AtTemperature& thermal,
-                             double dt, double guess) {
-  double y, h, hr;
-  double lo = 0, hi = (q - y0) / (3 * p.shear), dg = guess > 0 && guess < hi ? guess : hi;
-  // 100 iterations only guard the loop: the bracket halves at least every other one
-  for (int it = 0; it < 100; ++it) {
-    const double rate = dt > 0 ? dg / dt : 0.0;
-    p.flow_at(ep + dg, rate, thermal, y, h, hr);
-    const double r = q - 3 * p.shear * dg - y;
-    if (std::abs(r) <= 1e-15 * q) break;  // at the round-off of q
-    (r > 0 ? lo : hi) = dg;
-    if (lo >= hi) hi = 2 * lo;  // a law softening with strain had its root past dg0: the bracket widens
+// Each lane's temperature terms of a rate-dependent law (J2Params::at_temperature), once a return.
+struct TemperatureLanes {
+  J2Params::AtTemperature at[kLanes];
+  Lane log_a{}, strain_t{}, rate_exponent{};  // Hansel-Spittel's, gathered for its evaluation across the lanes
+  TemperatureLanes(const J2Params& p, Lane T) {
+    for (int l = 0; l < kLanes; ++l) {
+      at[l] = p.at_temperature(T[l]);
+      log_a[l] = at[l].log_a, strain_t[l] = at[l].strain_t, rate_exponent[l] = at[l].rate_exponent;
+    }
+  }
+};
+
+// The flow stress and its slopes d/d ep, d/d rate at each lane's (ep, rate): Hansel-Spittel across the
+// lanes (J2Params::hansel_spittel_at's formula, with lanes.hpp's exp and log), the other laws lane by
+// lane where `use`.
+void flow_lanes(const J2Params& p, const TemperatureLanes& t, Lane ep, Lane rate, LaneMask use, Lane& y, Lane& h,
+                Lane& hr) {
+  if (p.hansel_spittel) {
+    const LaneMask strained = ep > p.hs_eps_min, fast = rate > p.hs_rate_min;
+    const Lane e = select(strained, ep, splat(p.hs_eps_min)) + p.hs_eps_offset;
+    const Lane r = select(fast, rate, splat(p.hs_rate_min)) + p.hs_rate_offset;
+    y = exp(t.log_a + p.hs_m2 * log(e) + p.hs_m4 / e + t.strain_t * log(1 + e) + p.hs_m7 * e + t.rate_exponent * log(r));
+    h = select(strained, y * (p.hs_m2 / e - p.hs_m4 / (e * e) + t.strain_t / (1 + e) + p.hs_m7), Lane{});
+    hr = select(fast, y * t.rate_exponent / r, Lane{});
+    return;
+  }
+  for (int l = 0; l < kLanes; ++l)
+    if (use[l]) p.flow_at(ep[l], rate[l], t.at[l], y[l], h[l], hr[l]);
+}
+
+// The rate-dependent return across the lanes: per lane q - 3G dg = sigma_y(ep + dg, dg / dt, T) where the
+// trial state passes the yield check sigma_y(ep, 0, T). The residual falls strictly with dg where sigma_y
+// grows with strain and rate, and at dg0 = (q - y0) / 3G it is <= 0, so the root lies in [0, dg0]:
+// Newton in log dgamma, kept in the bracket by bisection, from the last increment's rate (the point's
+// plastic strain rate times dt) where that lies in the bracket, else from dg0 (docs/decisions.md,
+// "Johnson-Cook": 6.8 iterations a return from dg0 on the Johnson-Cook Taylor bar). A law that softens
+// with strain (Hansel-Spittel's m7 < 0) below its least rate can have its root just past dg0: the
+// bracket then widens. Each lane stops on its own test; 100 iterations only guard the loop (the
+// bracket halves at least every other one).
+Lane rate_dependent_return(const J2Params& p, Lane q, J2Batch& b) {
+  const TemperatureLanes t(p, b.T);
+  const LaneMask all = ~LaneMask{};
+  Lane y, h, hr;
+  flow_lanes(p, t, b.ep, Lane{}, all, y, h, hr);
+  const LaneMask plastic = q > y;
+  if (!any(plastic)) return Lane{};
+  const double dt = b.dt;
+  const Lane three_g = splat(3 * p.shear), guess = b.rate_last * dt;
+  Lane lo{}, hi = select(plastic, (q - y) / three_g, Lane{});
+  Lane dg = select((guess > 0) & (guess < hi), guess, hi);
+  LaneMask active = plastic;
+  for (int it = 0; it < 100 && any(active); ++it) {
+    flow_lanes(p, t, b.ep + dg, dt > 0 ? dg / dt : Lane{}, active, y, h, hr);
+    const Lane r = q - three_g * dg - y;
+    active &= (r > 1e-15 * q) | (r < -1e-15 * q);  // at the round-off of q: converged
+    lo = select(active & (r > 0), dg, lo);
+    hi = select(active & ~(r > 0), dg, hi);
+    hi = select(active & (lo >= hi), 2 * lo, hi);  // a law softening with strain: the bracket widens
     // Newton in log dgamma: the rate term C ln(dgamma / dt) is linear there (a dgamma of one step
     // is so small that it dominates the slope), and the strain term nearly so
-    const double slope = (3 * p.shear + h) * dg + (dt > 0 ? hr * dg / dt : 0.0);  // -dr / d ln dgamma
-    double next = dg * std::exp(r / slope);
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);  // Newton left the bracket (or slope infinite)
+    const Lane slope = (three_g + h) * dg + (dt > 0 ? hr * dg / dt : Lane{});  // -dr / d ln dgamma
+    Lane next = dg * exp(select(active, r / slope, Lane{}));
+    next = select((next > lo) & (next < hi), next, 0.5 * (lo + hi));  // Newton left the bracket (or slope infinite)
     // converged: a step below 1e-12 of dgamma (a tighter one is below the round-off of r when
     // dgamma is small against q / 3G), or the bracket at round-off
-    const bool done = std::abs(next - dg) <= 1e-12 * dg || hi - lo <= 1e-15 * hi;
-    dg = next;
-    if (done) break;
+    const Lane step = next - dg;
+    const LaneMask done = ((step <= 1e-12 * dg) & (step >= -1e-12 * dg)) | (hi - lo <= 1e-15 * hi);
+    dg = select(active, next, dg);
+    active &= ~done;
   }
-  return dg;
+  flow_lanes(p, t, b.ep + dg, dt > 0 ? dg / dt : Lane{}, plastic, y, h, hr);
+  b.plastic = plastic;
+  b.ep = select(plastic, b.ep + dg, b.ep);
+  b.dissipation = select(plastic, y * dg, Lane{});
+  return select(plastic, dg, Lane{});
 }
 
 // (1 + u)^n and its derivative n (1 + u)^(n-1) of the power law's exponent n (0 <= n <= 1), for
@@ -165,30 +209,16 @@ Lane power_law_return(const J2Params& p, Lane q, J2Batch& b) {
   return dgamma;
 }
 
-// Radial return, lane by lane (scalar: a few flops, or a Newton iteration for Johnson-Cook; the power
-// law's across the lanes): q - 3G dgamma = sigma_y(ep + dgamma). Returns dgamma (0 where the trial
-// state is elastic).
+// Radial return: q - 3G dgamma = sigma_y(ep + dgamma). Linear hardening lane by lane (one step of a few
+// flops); the power law's and the rate-dependent laws' Newton iterations across the lanes. Returns
+// dgamma (0 where the trial state is elastic).
 Lane return_map(const J2Params& p, Lane q, J2Batch& b) {
   Lane dgamma{};
   b.plastic = LaneMask{};
   b.dissipation = Lane{};
   if (!p.plastic) return dgamma;
   if (p.power_law) return power_law_return(p, q, b);
-  if (p.rate_dependent()) {
-    for (int l = 0; l < kLanes; ++l) {
-      double y, h, hr;
-      const J2Params::AtTemperature thermal = p.at_temperature(b.T[l]);
-      p.flow_at(b.ep[l], 0.0, thermal, y, h, hr);
-      if (!(q[l] > y)) continue;
-      const double dg = rate_dependent_return(p, q[l], b.ep[l], y, thermal, b.dt, b.rate_last[l] * b.dt);
-      p.flow_at(b.ep[l] + dg, b.dt > 0 ? dg / b.dt : 0.0, thermal, y, h, hr);
-      dgamma[l] = dg;
-      b.ep[l] += dg;
-      b.plastic[l] = -1;
-      b.dissipation[l] = y * dg;
-    }
-    return dgamma;
-  }
+  if (p.rate_dependent()) return rate_dependent_return(p, q, b);
   for (int l = 0; l < kLanes; ++l) {
     double y, h;
     p.yield_and_slope(b.ep[l], y, h);

@@ -45,6 +45,49 @@ inline Lane cube_root_near_one(Lane r) {
   return x;
 }
 
+// e^x and ln x lane by lane, within 2 ulp of libm (tests/unit/test_j2.cpp): the rate-dependent laws'
+// flow stress and their return's Newton step take kLanes points per instruction stream instead of a
+// libm call per point and iteration (docs/decisions.md, "Speed").
+// exp: x = k ln 2 + r with ln 2 in two parts (Cody & Waite: k ln2_hi is exact), |r| <= ln 2 / 2, e^r by
+// its Taylor series to r^13 (the next term is below 5e-18), times 2^k built in the exponent bits;
+// lanes with |x| > 700 (or NaN) take std::exp.
+inline Lane exp(Lane x) {
+  constexpr double ln2_hi = 6.93147180369123816490e-01, ln2_lo = 1.90821492927058770002e-10;
+  constexpr double round = 0x1.8p52;  // adding it rounds |y| < 2^51 to an integer
+  const Lane k = (x * 1.4426950408889634 + round) - round;
+  const Lane r = (x - k * ln2_hi) - k * ln2_lo;
+  Lane p = splat(1.0 / 6227020800);  // 1 / 13!
+  double factorial = 6227020800;
+  for (int n = 12; n >= 0; --n) factorial /= (n + 1), p = 1 / factorial + r * p;  // exact for n! <= 13!
+  const LaneMask bits = (__builtin_convertvector(k, LaneMask) + 1023) << 52;
+  Lane y = p * (Lane)bits;
+  for (int l = 0; l < kLanes; ++l)
+    if (!(std::abs(x[l]) <= 700)) y[l] = std::exp(x[l]);
+  return y;
+}
+
+// ln: x = m 2^e with m in [sqrt(1/2), sqrt(2)) from the bits, f = m - 1, and as fdlibm computes it,
+// ln(1 + f) = f - (f^2/2 - s (f^2/2 + R)), s = f / (2 + f), R = sum_k>=1 2 s^2k / (2k + 1) (Taylor to
+// k = 11: |s| <= 0.172, the next term below 1e-18); lanes not positive, normal and finite take std::log.
+inline Lane log(Lane x) {
+  constexpr double ln2_hi = 6.93147180369123816490e-01, ln2_lo = 1.90821492927058770002e-10;
+  const LaneMask bits = (LaneMask)x;
+  LaneMask e = ((bits >> 52) & 0x7ff) - 1023;
+  Lane m = (Lane)((bits & 0x000fffffffffffffLL) | 0x3ff0000000000000LL);  // in [1, 2)
+  const LaneMask high = m > 1.4142135623730951;
+  m = select(high, 0.5 * m, m);
+  e -= high;  // (true is -1)
+  const Lane f = m - 1, s = f / (2 + f), z = s * s, half_f2 = 0.5 * f * f;
+  Lane R = splat(2.0 / 23);
+  for (int k = 10; k >= 1; --k) R = 2.0 / (2 * k + 1) + z * R;
+  R *= z;
+  const Lane ef = __builtin_convertvector(e, Lane);
+  Lane y = ef * ln2_hi - ((half_f2 - (s * (half_f2 + R) + ef * ln2_lo)) - f);
+  for (int l = 0; l < kLanes; ++l)
+    if (!(x[l] >= 0x1p-1022 && x[l] <= 0x1.fffffffffffffp1023)) y[l] = std::log(x[l]);
+  return y;
+}
+
 struct Sym {  // symmetric 3x3, Voigt order
   Lane v[6];
 };
