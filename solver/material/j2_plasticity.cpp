@@ -63,20 +63,34 @@ void set_lane(Sym& a, int l, const Eigen::Matrix3d& m) {
 // Each lane's temperature terms of a rate-dependent law (J2Params::at_temperature), once a return.
 struct TemperatureLanes {
   J2Params::AtTemperature at[kLanes];
-  Lane log_a{}, strain_t{}, rate_exponent{};  // Hansel-Spittel's, gathered for its evaluation across the lanes
+  // gathered for the evaluation across the lanes: Johnson-Cook's and Hansel-Spittel's
+  Lane thermal{}, log_a{}, strain_t{}, rate_exponent{};
   TemperatureLanes(const J2Params& p, Lane T) {
     for (int l = 0; l < kLanes; ++l) {
       at[l] = p.at_temperature(T[l]);
+      thermal[l] = at[l].thermal;
       log_a[l] = at[l].log_a, strain_t[l] = at[l].strain_t, rate_exponent[l] = at[l].rate_exponent;
     }
   }
 };
 
-// The flow stress and its slopes d/d ep, d/d rate at each lane's (ep, rate): Hansel-Spittel across the
-// lanes (J2Params::hansel_spittel_at's formula, with lanes.hpp's exp and log), the other laws lane by
-// lane where `use`.
+// The flow stress and its slopes d/d ep, d/d rate at each lane's (ep, rate): Johnson-Cook and
+// Hansel-Spittel across the lanes (J2Params::johnson_cook_at's and hansel_spittel_at's formulas, with
+// lanes.hpp's exp and log), a table lane by lane where `use`.
 void flow_lanes(const J2Params& p, const TemperatureLanes& t, Lane ep, Lane rate, LaneMask use, Lane& y, Lane& h,
                 Lane& hr) {
+  if (p.johnson_cook) {
+    const LaneMask strained = ep > 0, fast = rate > p.jc_rate0;
+    const Lane hard = select(strained, p.jc_b * exp(p.jc_n * log(select(strained, ep, splat(1)))), Lane{});
+    const Lane strain = p.yield0 + hard;
+    const double at_zero = p.jc_n < 1 ? INFINITY : p.jc_b * p.jc_n;  // the slope at ep = 0
+    const Lane strain_slope = select(strained, p.jc_n * hard / select(strained, ep, splat(1)), splat(at_zero));
+    const Lane rate_factor = select(fast, 1 + p.jc_c * log(select(fast, rate, splat(p.jc_rate0)) / p.jc_rate0), splat(1));
+    y = strain * rate_factor * t.thermal;
+    h = strain_slope * rate_factor * t.thermal;
+    hr = select(fast, strain * t.thermal * p.jc_c / rate, Lane{});
+    return;
+  }
   if (p.hansel_spittel) {
     const LaneMask strained = ep > p.hs_eps_min, fast = rate > p.hs_rate_min;
     const Lane e = select(strained, ep, splat(p.hs_eps_min)) + p.hs_eps_offset;
