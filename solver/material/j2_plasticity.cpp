@@ -171,20 +171,19 @@ void binomial_series(Lane u, const J2Params& p, Lane& value, Lane& slope) {
 }
 
 // The power law's return, q - 3G dgamma = K (z0 + dgamma)^n with z0 = eps0 + ep: Newton across the
-// lanes on K z0^n (1 + u)^n, u = dgamma / z0, by the binomial series, so one pow a point (sigma_y at ep)
-// instead of one an iteration. The root lies below dg0 = (q - sigma_y(ep)) / 3G; a lane whose dg0
+// lanes on K z0^n (1 + u)^n, u = dgamma / z0, by the binomial series, so one power a point (sigma_y at
+// ep, across the lanes by lanes.hpp's exp and log) instead of a pow an iteration. The root lies below dg0 = (q - sigma_y(ep)) / 3G; a lane whose dg0
 // passes z0 / 4 (a step's plastic strain a quarter of the strain so far: the first steps of an impact)
 // iterates on pow alone. Newton stops at a step below 1e-14 of dgamma, or (across the lanes) below the
 // round-off of q / 3G, where the residual's round-off can keep the step from falling under the first
 // (steps of 1e-5 on 1 m/s upsetting); 50 iterations only guard the loop.
 Lane power_law_return(const J2Params& p, Lane q, J2Batch& b) {
-  Lane dgamma{}, y0{}, h0{}, z0{};
+  Lane dgamma{};
   LaneMask series{};
+  const Lane z0 = p.eps0 + b.ep;
+  const Lane y0 = p.strength * exp(p.exponent * log(z0)), h0 = p.exponent * y0 / z0;  // sigma_y and its slope at ep
   for (int l = 0; l < kLanes; ++l) {
-    z0[l] = p.eps0 + b.ep[l];
-    double y, h;
-    p.yield_and_slope(b.ep[l], y, h);
-    y0[l] = y, h0[l] = h;
+    double y = y0[l], h = h0[l];
     if (!(q[l] > y)) continue;
     b.plastic[l] = -1;
     if ((q[l] - y) / (3 * p.shear) <= 0.25 * z0[l]) {
