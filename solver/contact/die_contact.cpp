@@ -39,7 +39,7 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
     }
   // Penetrations stay far below half a spacing (the penalty is stiff); deeper ones would be missed.
   margin_ = 0.5 * hmax;
-  // a slave's candidate triangles are gathered again once it has moved half the margin (die_candidates.hpp)
+  // a slave's candidate triangles are gathered again once it has moved a quarter of the margin (die_candidates.hpp)
   for (const auto& s : surfaces_) search_.push_back(std::make_unique<DieSearch>(s, margin_, 0.25 * margin_));
 
   const std::size_t slaves = particles_.size() + md.m;

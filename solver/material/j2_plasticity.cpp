@@ -172,8 +172,8 @@ void binomial_series(Lane u, const J2Params& p, Lane& value, Lane& slope) {
 
 // The power law's return, q - 3G dgamma = K (z0 + dgamma)^n with z0 = eps0 + ep: Newton across the
 // lanes on K z0^n (1 + u)^n, u = dgamma / z0, by the binomial series, so one power a point (sigma_y at
-// ep, across the lanes by lanes.hpp's exp and log) instead of a pow an iteration. The root lies below dg0 = (q - sigma_y(ep)) / 3G; a lane whose dg0
-// passes z0 / 4 (a step's plastic strain a quarter of the strain so far: the first steps of an impact)
+// ep, across the lanes by lanes.hpp's exp and log) instead of a pow an iteration. The root lies below
+// dg0 = (q - sigma_y(ep)) / 3G; a lane whose dg0 passes z0 / 4 (a step's plastic strain a quarter of the strain so far: the first steps of an impact)
 // iterates on pow alone. Newton stops at a step below 1e-14 of dgamma, or (across the lanes) below the
 // round-off of q / 3G, where the residual's round-off can keep the step from falling under the first
 // (steps of 1e-5 on 1 m/s upsetting); 50 iterations only guard the loop.

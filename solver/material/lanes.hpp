@@ -47,7 +47,8 @@ inline Lane cube_root_near_one(Lane r) {
 
 // e^x and ln x lane by lane, within 2 ulp of libm (tests/unit/test_j2.cpp): the rate-dependent laws'
 // flow stress and their return's Newton step take kLanes points per instruction stream instead of a
-// libm call per point and iteration (docs/decisions.md, "Speed").
+// libm call per point and iteration (docs/decisions.md, "e^x and ln x across the lanes for the
+// flow-stress laws").
 // exp: x = k ln 2 + r with ln 2 in two parts (Cody & Waite: k ln2_hi is exact), |r| <= ln 2 / 2, e^r by
 // its Taylor series to r^13 (the next term is below 5e-18), times 2^k built in the exponent bits;
 // lanes with |x| > 700 (or NaN) take std::exp.
@@ -58,7 +59,7 @@ inline Lane exp(Lane x) {
   const Lane r = (x - k * ln2_hi) - k * ln2_lo;
   Lane p = splat(1.0 / 6227020800);  // 1 / 13!
   double factorial = 6227020800;
-  for (int n = 12; n >= 0; --n) factorial /= (n + 1), p = 1 / factorial + r * p;  // exact for n! <= 13!
+  for (int n = 12; n >= 0; --n) factorial /= (n + 1), p = 1 / factorial + r * p;  // (n! <= 13! exact)
   const LaneMask bits = (__builtin_convertvector(k, LaneMask) + 1023) << 52;
   Lane y = p * (Lane)bits;
   for (int l = 0; l < kLanes; ++l)
