@@ -1,8 +1,8 @@
 // A slave's candidate triangles of each die (a Verlet list): the triangles that can come within the
-// die search's margin while the slave, in the die's frame, stays within a skin of where they were
-// gathered. A slave in contact slides a spacing in hundreds of steps, so most of its lookups read a
-// handful of triangles, their boxes in the same stream, instead of a bin's dozens (each a miss in
-// memory), and start from the last lookup's triangle. The hit is bit for bit the bin's
+// die search's margin while the slave, in the die's frame, stays within the search's skin of where
+// they were gathered. A slave in contact slides a spacing in hundreds of steps, so most of its
+// lookups read a handful of triangles, their boxes in the same stream, instead of a bin's dozens (each
+// a miss in memory), and start from the last lookup's triangle. The hit is bit for bit the bin's
 // (DieSearch::nearest_among), so the lists are not state: a restart starts without them.
 #pragma once
 #include <cstdint>
@@ -20,22 +20,27 @@ class DieCandidates {
   DieHit nearest(const DieSearch& search, std::size_t die, std::size_t slave, const double y[3]);
 
  private:
-  // At most this many triangles a list: where more lie within the search's skin (a die's finely
-  // meshed fillet), the skin shrinks 4x, twice, then the slave reads its bin.
-  static constexpr int kCapacity = 48;
+  // At most this many triangles a list: where more lie within the skin (a die meshed far finer than
+  // the particles), the skin shrinks 4x, twice, then the slave reads its bin.
+  static constexpr int kMost = 256;
   struct List {
-    double origin[3];  // where they were gathered (die frame)
-    float skin;        // how far the slave may move from there (m)
-    std::int32_t count;  // -1: more than kCapacity at the smallest skin
-    std::int32_t last;   // the last lookup's nearest triangle (-1: none): the search's hint
-    std::int32_t triangles[kCapacity];
-    float boxes[6 * kCapacity];  // theirs
+    double origin[3];        // where they were gathered (die frame)
+    float skin;              // how far the slave may move from there (m)
+    std::int32_t count;      // -1: more than kMost at the smallest skin
+    std::int32_t last;       // the last lookup's nearest triangle (-1: none): the search's hint
+    std::int32_t capacity;   // its room in the pool
+    std::size_t offset;      // its first triangle in the pool
   };
-  void gather(const DieSearch& search, const double y[3], List& list) const;
+  void gather(const DieSearch& search, const double y[3], List& list);
 
   std::size_t slaves_ = 0;
   std::vector<std::int32_t> slot_;  // per die and slave: its list in lists_ (-1: none yet)
-  std::vector<List> lists_;         // [0] the gathering's scratch; grows as slaves first come near a die
+  std::vector<List> lists_;         // grows as slaves first come near a die
+  // the lists' triangles and their boxes (lo[3], hi[3] rounded outward to float); a list that
+  // outgrows its room moves to the end with twice the room (so the pool is at most about twice
+  // what the lists hold); [0, kMost): the gathering's scratch
+  std::vector<std::int32_t> triangles_;
+  std::vector<float> boxes_;
 };
 
 }  // namespace rk
