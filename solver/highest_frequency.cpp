@@ -28,7 +28,7 @@ void inverse(const double F[9], double J, double Fi[9]) {
 }  // namespace
 
 HighestFrequency::HighestFrequency(const Model& md, const Comm& comm)
-    : exchange_(md, 3), headroom_(force_headroom(md, 1, 0, comm)), Kv_(3 * md.n), P_(9 * md.m), partial_(3 * md.n) {
+    : exchange_(md, int(kForceStride)), headroom_(force_headroom(md, 1, 0, comm)), Kv_(3 * md.n), P_(9 * md.m), partial_(kForceStride * md.n) {
   double owned = 0;
   for (std::size_t I = 0; I < md.n; ++I) owned += md.owned[I];
   comm.sum(&owned, 1);
@@ -84,7 +84,8 @@ void HighestFrequency::apply(const Model& md, const State& st, const Comm& comm)
   add_point_forces(md, P_, partial_, scale, md.boundary_points);
   add_point_forces(md, P_, partial_, scale, md.interior_points);
   exchange_.sum(partial_);
-  for (std::size_t k = 0; k < Kv_.size(); ++k) Kv_[k] = scale.real(partial_[k]);
+  for (std::size_t I = 0; I < md.n; ++I)
+    for (int i = 0; i < 3; ++i) Kv_[3 * I + i] = scale.real(partial_[kForceStride * I + i]);
 }
 
 // sum over the owned particles of a_I . b_I (times m_I with by_mass), in fixed point over the ranks

@@ -340,7 +340,8 @@ void Simulation::internal_force() {
   add_internal_force(md_, st_, scale, md_.interior_points);
   timer_.stop(kInternalForce);
   exchange_->finish(st_.partial);
-  for (std::size_t k = 0; k < st_.force.size(); ++k) st_.force[k] = scale.real(st_.partial[k]);
+  for (std::size_t I = 0; I < md_.n; ++I)
+    for (int i = 0; i < 3; ++i) st_.force[3 * I + i] = scale.real(st_.partial[kForceStride * I + i]);
   timer_.stop(kOverlapExchange);
 }
 
@@ -438,7 +439,7 @@ void Simulation::rebind() {
   dies_->totals() = totals;
   dies_->touched() = touched;
   parts_ = std::make_unique<PartContact>(md_, scene_, comm_);
-  exchange_.emplace(md_, 3);
+  exchange_.emplace(md_, int(kForceStride));
   headroom_ = force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm_);
   force_terms_ = force_terms(md_, *dies_, *parts_, comm_);
   if (heat_) heat_ = std::make_unique<HeatTransfer>(md_, scene_, comm_);  // the capacities on the new reference
@@ -558,7 +559,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   last_frame_ = [this] { write_frame(st_.v); };
   first_step_ = st_.step;
   const int die_count = int(md_.dies.size());
-  exchange_.emplace(md_, 3);
+  exchange_.emplace(md_, int(kForceStride));
   headroom_ = force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm);
   force_terms_ = force_terms(md_, *dies_, *parts_, comm);
   v_old_.assign(st_.v.size(), 0.0);

@@ -11,7 +11,7 @@ State State::initial(const Model& md, const double velocity[3], const double gra
       st.v[3 * I + i] = velocity[i] + gradient[3 * i] * md.X[3 * I] + gradient[3 * i + 1] * md.X[3 * I + 1] +
                         gradient[3 * i + 2] * md.X[3 * I + 2];
   st.force.assign(3 * md.n, 0.0);
-  st.partial.assign(3 * md.n, Fixed(0));
+  st.partial.assign(kForceStride * md.n, Fixed(0));
   st.F.assign(9 * md.m, 0.0);
   st.J.assign(md.m, 1.0);
   st.P.assign(9 * md.m, 0.0);

@@ -10,6 +10,8 @@
 
 namespace rk {
 
+inline constexpr std::size_t kForceStride = 4;  // State::partial's entries per particle
+
 struct State {
   double t = 0;
   std::int64_t step = 0;
@@ -17,7 +19,9 @@ struct State {
 
   // particles (3 per particle)
   std::vector<double> u, v, force;  // displacement d_I, velocity, net internal force f^int_I
-  std::vector<Fixed> partial;      // fixed-point force accumulators (own points, then summed)
+  // fixed-point force accumulators (own points, then summed), kForceStride per particle: x, y, z and
+  // a zero pad, so that one vector instruction adds a term to a particle
+  std::vector<Fixed> partial;
 
   // integration points
   std::vector<double> F;       // 9 per point, row-major F_ik = delta_ik + sum_I u_Ii dN_I/dX_k

@@ -391,13 +391,13 @@ void DieContact::add_to(const Model& md, State& st, const FixedScale& scale) con
     const Row r = row(md, std::size_t(a.slave));
     for (std::int32_t k = 0; k < r.size; ++k)
       for (int i = 0; i < 3; ++i)
-        st.partial[3 * std::size_t(r.cols[k]) + i] -= scale.fixed(r.N[k] * (a.normal_force[i] + a.friction_force[i]));
+        st.partial[kForceStride * std::size_t(r.cols[k]) + i] -= scale.fixed(r.N[k] * (a.normal_force[i] + a.friction_force[i]));
   }
   for (const auto& ff : face_active_) {  // a face's friction, equally on its nodes' coefficients
     const auto k0 = md.surface_face_offsets[std::size_t(ff.face)], k1 = md.surface_face_offsets[std::size_t(ff.face) + 1];
     for (auto k = k0; k < k1; ++k)
       for (int i = 0; i < 3; ++i)
-        st.partial[3 * std::size_t(md.surface_face_nodes[std::size_t(k)]) + i] -= scale.fixed(ff.force[i] / double(k1 - k0));
+        st.partial[kForceStride * std::size_t(md.surface_face_nodes[std::size_t(k)]) + i] -= scale.fixed(ff.force[i] / double(k1 - k0));
   }
 }
 

@@ -214,7 +214,7 @@ void PartContact::add_to(const Model& md, State& st, const FixedScale& scale) co
     const auto I = std::size_t(slaves_[std::size_t(a.slave)]);
     for (auto k = md.material_offsets[I]; k < md.material_offsets[I + 1]; ++k)
       for (int i = 0; i < 3; ++i)
-        st.partial[3 * std::size_t(md.material_cols[std::size_t(k)]) + i] -= scale.fixed(md.material_N[std::size_t(k)] * a.f[i]);
+        st.partial[kForceStride * std::size_t(md.material_cols[std::size_t(k)]) + i] -= scale.fixed(md.material_N[std::size_t(k)] * a.f[i]);
   }
 }
 

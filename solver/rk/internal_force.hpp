@@ -25,7 +25,8 @@ ForceTerms force_terms(const Model& md, const DieContact& dies, const PartContac
 
 void clear_internal_force(State& st);
 void add_internal_force(const Model& md, State& st, const FixedScale& scale, std::span<const std::int32_t> points);
-// The same sum of w_g P_g grad_X N_I for any per-point tensors P (9 per point) into `partial`.
+// The same sum of w_g P_g grad_X N_I for any per-point tensors P (9 per point) into `partial`
+// (kForceStride per particle, as State::partial).
 void add_point_forces(const Model& md, const std::vector<double>& P, std::vector<Fixed>& partial, const FixedScale& scale,
                       std::span<const std::int32_t> points);
 

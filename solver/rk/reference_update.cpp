@@ -448,7 +448,7 @@ void rebuild_on_reference(Model& md, State& st, const Scene& scene, const Comm& 
     }
   }
   st.force.assign(3 * next.n, 0.0);
-  st.partial.assign(3 * next.n, Fixed(0));
+  st.partial.assign(kForceStride * next.n, Fixed(0));
   md = std::move(next);
 }
 

@@ -3,6 +3,7 @@
 // update; without, three scalars (a vector of four there takes two registers and is slower:
 // docs/decisions.md, "Vector registers in the hot loops").
 #pragma once
+#include <cstdint>
 
 namespace rk {
 
@@ -11,6 +12,12 @@ using Row3 = double __attribute__((vector_size(32)));
 using FixedRow3 = long long __attribute__((vector_size(32)));
 inline Row3 make_row3(double a, double b, double c) { return Row3{a, b, c, 0.0}; }
 inline FixedRow3 truncate_row(Row3 r) { return __builtin_convertvector(r, FixedRow3); }  // parallel/fixed_point.hpp
+// acc[0 .. 4) += f, lane 3 included (f's is 0): one load, add and store, so a particle's
+// accumulators are four apart (State::partial)
+using Fixed4 = std::int64_t __attribute__((vector_size(32), aligned(8)));  // (stores alias int64_t only)
+inline void add_row(std::int64_t* acc, FixedRow3 f) {
+  *reinterpret_cast<Fixed4*>(acc) += __builtin_convertvector(f, Fixed4);
+}
 #else
 struct Row3 {
   double v[3];
@@ -32,6 +39,9 @@ struct FixedRow3 {
 };
 inline Row3 make_row3(double a, double b, double c) { return Row3{{a, b, c}}; }
 inline FixedRow3 truncate_row(Row3 r) { return {{(long long)r.v[0], (long long)r.v[1], (long long)r.v[2]}}; }
+inline void add_row(std::int64_t* acc, FixedRow3 f) {
+  for (int i = 0; i < 3; ++i) acc[i] += f.v[i];
+}
 #endif
 
 inline Row3 load_row3(const double* p) { return make_row3(p[0], p[1], p[2]); }

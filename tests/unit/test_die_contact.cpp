@@ -64,7 +64,7 @@ TEST(DieContact, ALiftIntoTheDieMeetsItAtTheParticlesAndThePoints) {
   std::fill(st.partial.begin(), st.partial.end(), rk::Fixed(0));
   contact.add_to(md, st, scale);
   double on_particles = 0;
-  for (std::size_t I = 0; I < md.n; ++I) on_particles -= scale.real(st.partial[3 * I + 2]);
+  for (std::size_t I = 0; I < md.n; ++I) on_particles -= scale.real(st.partial[rk::kForceStride * I + 2]);
   EXPECT_NEAR(on_particles / tot.force[2], 1.0, 1e-9) << "sum_J N_J f = f";
 }
 
@@ -168,7 +168,7 @@ TEST(DieContact, SymmetryPlanesHoldTheMaterialThatCrossesThem) {
   std::fill(st.partial.begin(), st.partial.end(), rk::Fixed(0));
   contact.add_to(md, st, scale);
   double on_particles = 0;
-  for (std::size_t I = 0; I < md.n; ++I) on_particles -= scale.real(st.partial[3 * I]);
+  for (std::size_t I = 0; I < md.n; ++I) on_particles -= scale.real(st.partial[rk::kForceStride * I]);
   EXPECT_NEAR(on_particles / planes.force[0], 1.0, 1e-9) << "sum_J N_J f = f";
 }
 
