@@ -55,6 +55,9 @@ struct State {
   // reference updates (rk/reference_update.hpp); empty until the first: the particles' displacements
   // at the last update (F is gathered from d - d^ref) and each point's det F up to it
   std::vector<double> u_ref, J_ref;
+  // d_I - d_I^ref four apart (the fourth 0), the deformation gradient's copy (rk/kinematics.cpp): not state,
+  // rewritten at every gather
+  std::vector<double> d_gather;
   std::int64_t reference_updates = 0;
   // det of the deformation gradient from t = 0 (J above is since the last reference update)
   double total_J(std::size_t g) const { return J_ref.empty() ? J[g] : J[g] * J_ref[g]; }

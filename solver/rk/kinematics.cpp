@@ -5,17 +5,20 @@
 namespace rk {
 namespace {
 
-template <bool kUpdated>
+// F_g's columns F_.j = e_j + sum_I (d_I - d_I^ref) dN_I/dX_j: per term one load of the padded
+// displacement and three multiply-adds by the gradient's components
 void gather_gradients(const Model& md, State& st) {
+  const double* d = st.d_gather.data();
+  const double* dN = md.dN.data();
   for (std::size_t g = 0; g < md.m; ++g) {
-    Row3 row[3] = {make_row3(1, 0, 0), make_row3(0, 1, 0), make_row3(0, 0, 1)};  // rows of F
-    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
-      const std::size_t J = 3 * std::size_t(md.nbr[k]);
-      const Row3 d = load_row3(&md.dN[3 * std::size_t(k)]);
-      for (int i = 0; i < 3; ++i) row[i] += (kUpdated ? st.u[J + i] - st.u_ref[J + i] : st.u[J + i]) * d;
+    Row3 column[3] = {make_row3(1, 0, 0), make_row3(0, 1, 0), make_row3(0, 0, 1)};
+    const std::int64_t k1 = md.nbr_offsets[g + 1];
+    for (auto k = md.nbr_offsets[g]; k < k1; ++k) {
+      const Row3 dI = load_row4(&d[4 * std::size_t(md.nbr[k])]);
+      for (int j = 0; j < 3; ++j) column[j] += dN[3 * std::size_t(k) + j] * dI;
     }
     double* F = &st.F[9 * g];
-    for (int i = 0; i < 9; ++i) F[i] = row[i / 3][i % 3];
+    for (int i = 0; i < 9; ++i) F[i] = column[i % 3][i / 3];
     st.J[g] = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) + F[2] * (F[3] * F[7] - F[4] * F[6]);
   }
 }
@@ -23,8 +26,11 @@ void gather_gradients(const Model& md, State& st) {
 }  // namespace
 
 void compute_deformation_gradient(const Model& md, State& st) {
-  if (st.u_ref.empty()) gather_gradients<false>(md, st);
-  else gather_gradients<true>(md, st);
+  if (st.d_gather.size() != 4 * md.n) st.d_gather.assign(4 * md.n, 0.0);  // (at the start and a reference update)
+  const bool updated = !st.u_ref.empty();
+  for (std::size_t I = 0; I < md.n; ++I)
+    for (int i = 0; i < 3; ++i) st.d_gather[4 * I + i] = updated ? st.u[3 * I + i] - st.u_ref[3 * I + i] : st.u[3 * I + i];
+  gather_gradients(md, st);
   for (std::size_t c = 0; c < md.cells; ++c) {
     double wJ = 0, w = 0;
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) wJ += md.weight[g] * st.J[g], w += md.weight[g];

@@ -45,5 +45,12 @@ inline void add_row(std::int64_t* acc, FixedRow3 f) {
 #endif
 
 inline Row3 load_row3(const double* p) { return make_row3(p[0], p[1], p[2]); }
+// The row at p padded to four (p[3] is 0): on AVX one load.
+#ifdef __AVX__
+using Double4 = double __attribute__((vector_size(32), aligned(8)));
+inline Row3 load_row4(const double* p) { return *reinterpret_cast<const Double4*>(p); }
+#else
+inline Row3 load_row4(const double* p) { return make_row3(p[0], p[1], p[2]); }
+#endif
 
 }  // namespace rk
