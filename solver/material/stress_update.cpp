@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 #include "material/damage.hpp"
@@ -10,9 +11,18 @@
 namespace rk {
 namespace {
 
-// The points g .. g+n of one cell, kLanes at a time (the rest of the lanes at rest); with a thermal
-// strain their stress-free stretches into `stretch`.
-void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n, J2Batch& b, Lane& stretch) {
+// F of the points g .. g+n across the lanes (the rest of the lanes the identity).
+Mat lanes_of_F(const State& st, std::size_t g, int n) {
+  Mat F{};
+  for (int l = 0; l < kLanes; ++l)
+    for (int i = 0; i < 9; ++i) F.v[i][l] = l < n ? st.F[9 * (g + l) + i] : (i % 4 == 0);
+  return F;
+}
+
+// The points g .. g+n of one cell, kLanes at a time (the rest of the lanes at rest), F theirs across
+// the lanes; with a thermal strain their stress-free stretches into `stretch`.
+void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n, const Mat& F, J2Batch& b,
+          Lane& stretch) {
   Lane r = splat(1);  // Jbar / J
   for (int l = 0; l < n && md.fbar; ++l) r[l] = st.cell_J[c] / st.J[g + l];
   Lane ratio = cube_root_near_one(r);
@@ -26,21 +36,19 @@ void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n,
       continue;
     }
     const std::size_t p = g + l;
-    for (int i = 0; i < 9; ++i) b.F.v[i][l] = ratio[l] * st.F[9 * p + i];
     for (int i = 0; i < 6; ++i) b.cp_inv.v[i][l] = st.cp_inv[6 * p + i];
     b.ep[l] = st.ep[p];
     if (!st.temperature.empty()) b.T[l] = st.temperature[p];
     if (!st.plastic_rate.empty()) b.rate_last[l] = st.plastic_rate[p];
   }
+  for (int i = 0; i < 9; ++i) b.F.v[i] = ratio * F.v[i];  // (the lanes at rest: 1 times the identity)
   b.dt = st.dt_half;  // the increment from the last state took the last step (0 at the start: no rate)
 }
 
 // P = tau_eff F^{-T} = tau_eff cof(F) / det F for the points g .. g+n, and their force bounds.
-void first_piola(const Model& md, State& st, std::size_t g, int n, double pc) {
-  Mat F{}, cof;
+void first_piola(const Model& md, State& st, std::size_t g, int n, double pc, const Mat& F) {
+  Mat cof;
   Sym te;
-  for (int l = 0; l < kLanes; ++l)
-    for (int i = 0; i < 9; ++i) F.v[i][l] = l < n ? st.F[9 * (g + l) + i] : (i % 4 == 0);
   for (int l = 0; l < kLanes; ++l) {
     const std::size_t p = g + std::min(l, n - 1);
     const double* t = &st.tau[6 * p];
@@ -126,10 +134,13 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
     if (!cell_ok) continue;
     double wp = 0, wJ = 0, w = 0, ep_max = 0;
     double increment[kMaxCellPoints];  // the points' plastic strain increments (for the damage)
+    Mat F_batch[kMaxCellPoints / kLanes];  // the batches' F, again for P once the cell's pressure is known
     for (auto g = g0; g < g1; g += kLanes) {
       const int n = int(std::min<std::size_t>(kLanes, g1 - g));
+      const Mat F = lanes_of_F(st, g, n);
+      if ((g - g0) / kLanes < std::size(F_batch)) F_batch[(g - g0) / kLanes] = F;
       Lane stretch;
-      load(md, st, c, g, n, b, stretch);
+      load(md, st, c, g, n, F, b, stretch);
       j2_update(law, b);
       for (int l = 0; l < n; ++l) {
         const std::size_t p = g + l;
@@ -171,7 +182,11 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
     if (!health.ok) continue;
     const double pc = md.fbar ? wp / wJ : 0.0;
     if (!st.damage.empty()) accumulate_damage(md, st, g0, g1, pc, increment);
-    for (auto g = g0; g < g1; g += kLanes) first_piola(md, st, g, int(std::min<std::size_t>(kLanes, g1 - g)), pc);
+    for (auto g = g0; g < g1; g += kLanes) {
+      const int n = int(std::min<std::size_t>(kLanes, g1 - g));
+      const std::size_t k = (g - g0) / kLanes;
+      first_piola(md, st, g, n, pc, k < std::size(F_batch) ? F_batch[k] : lanes_of_F(st, g, n));
+    }
   }
   st.thermal_work += thermal_work;
   return health;
