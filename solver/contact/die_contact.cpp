@@ -178,9 +178,13 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
       for (int i = 0; i < 3; ++i) hit.gap += (x[i] - p.point[i]) * p.normal[i];
       return hit;
     };
+    // each slave's clearance less the most it and the obstacle can have moved (one pass that
+    // vectorizes); a slave is skipped while it cannot have reached the obstacle
+    double* clearance = &clearance_[k * slaves];
+    const double* N_sum = N_sum_.data();
+    for (std::size_t s = 0; s < slaves; ++s) clearance[s] -= N_sum[s] * moved + die_moved;
     for (std::size_t s = 0; s < slaves; ++s) {
-      double& c = clearance_[k * slaves + s];  // skipped while it cannot have reached the obstacle
-      c -= N_sum_[s] * moved + die_moved;
+      double& c = clearance[s];
       if (c > clear) continue;
       double x[3];
       material_point(md, st, s, x);
