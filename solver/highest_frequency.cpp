@@ -84,8 +84,7 @@ void HighestFrequency::apply(const Model& md, const State& st, const Comm& comm)
   add_point_forces(md, P_, partial_, scale, md.boundary_points);
   add_point_forces(md, P_, partial_, scale, md.interior_points);
   exchange_.sum(partial_);
-  for (std::size_t I = 0; I < md.n; ++I)
-    for (int i = 0; i < 3; ++i) Kv_[3 * I + i] = scale.real(partial_[kForceStride * I + i]);
+  read_forces(partial_, scale, Kv_);
 }
 
 // sum over the owned particles of a_I . b_I (times m_I with by_mass), in fixed point over the ranks

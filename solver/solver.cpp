@@ -340,8 +340,7 @@ void Simulation::internal_force() {
   add_internal_force(md_, st_, scale, md_.interior_points);
   timer_.stop(kInternalForce);
   exchange_->finish(st_.partial);
-  for (std::size_t I = 0; I < md_.n; ++I)
-    for (int i = 0; i < 3; ++i) st_.force[3 * I + i] = scale.real(st_.partial[kForceStride * I + i]);
+  read_forces(st_.partial, scale, st_.force);
   timer_.stop(kOverlapExchange);
 }
 

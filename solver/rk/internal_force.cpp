@@ -51,6 +51,11 @@ void add_point_forces(const Model& md, const std::vector<double>& P_all, std::ve
   }
 }
 
+void read_forces(const std::vector<Fixed>& partial, const FixedScale& scale, std::vector<double>& force) {
+  for (std::size_t I = 0; I < force.size() / 3; ++I)
+    for (int i = 0; i < 3; ++i) force[3 * I + i] = scale.real(partial[kForceStride * I + i]);
+}
+
 void add_internal_force(const Model& md, State& st, const FixedScale& scale, std::span<const std::int32_t> points) {
   add_point_forces(md, st.P, st.partial, scale, points);
 }

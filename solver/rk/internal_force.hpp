@@ -29,5 +29,7 @@ void add_internal_force(const Model& md, State& st, const FixedScale& scale, std
 // (kForceStride per particle, as State::partial).
 void add_point_forces(const Model& md, const std::vector<double>& P, std::vector<Fixed>& partial, const FixedScale& scale,
                       std::span<const std::int32_t> points);
+// The sums as forces, 3 per particle, from `partial` (kForceStride per particle).
+void read_forces(const std::vector<Fixed>& partial, const FixedScale& scale, std::vector<double>& force);
 
 }  // namespace rk
