@@ -222,26 +222,25 @@ Lane power_law_return(const J2Params& p, Lane q, J2Batch& b) {
   return dgamma;
 }
 
-// Radial return: q - 3G dgamma = sigma_y(ep + dgamma). Linear hardening lane by lane (one step of a few
-// flops); the power law's and the rate-dependent laws' Newton iterations across the lanes. Returns
-// dgamma (0 where the trial state is elastic).
-Lane return_map(const J2Params& p, Lane q, J2Batch& b) {
+// Radial return: q - 3G dgamma = sigma_y(ep + dgamma). Linear hardening in one step across the lanes;
+// the power law's and the rate-dependent laws' Newton iterations across the lanes. Returns dgamma (0
+// where the trial state is elastic). Not inlined: where the returns land in j2_update decides which
+// products the compiler fuses into multiply-adds there, so inlining them would move j2_update's
+// round-off whenever a return's code changes size.
+__attribute__((noinline)) Lane return_map(const J2Params& p, Lane q, J2Batch& b) {
   Lane dgamma{};
   b.plastic = LaneMask{};
   b.dissipation = Lane{};
   if (!p.plastic) return dgamma;
   if (p.power_law) return power_law_return(p, q, b);
   if (p.rate_dependent()) return rate_dependent_return(p, q, b);
-  for (int l = 0; l < kLanes; ++l) {
-    double y, h;
-    p.yield_and_slope(b.ep[l], y, h);
-    if (!(q[l] > y)) continue;
-    const double dg = (q[l] - y) / (3 * p.shear + h);  // one step for linear hardening
-    dgamma[l] = dg;
-    b.ep[l] += dg;
-    b.plastic[l] = -1;
-    b.dissipation[l] = p.yield(b.ep[l]) * dg;
-  }
+  // linear hardening: one step, the same flops as J2Params::yield_and_slope and yield
+  const Lane y = p.yield0 + p.hardening * b.ep;
+  b.plastic = q > y;
+  if (!any(b.plastic)) return dgamma;
+  dgamma = select(b.plastic, (q - y) / (3 * p.shear + p.hardening), dgamma);
+  b.ep = select(b.plastic, b.ep + dgamma, b.ep);
+  b.dissipation = select(b.plastic, (p.yield0 + p.hardening * b.ep) * dgamma, b.dissipation);
   return dgamma;
 }
 
@@ -307,7 +306,8 @@ void j2_update(const J2Params& p, J2Batch& b) {
   const LaneMask spectral = norm > 0.5;
   Sym eps = splat(0.5) * log_series(X, norm, ~spectral);
   Eigen::Matrix3d vectors[kLanes];
-  for (int l = 0; l < kLanes; ++l) {
+  const bool any_spectral = any(spectral);
+  for (int l = 0; l < kLanes && any_spectral; ++l) {
     if (!spectral[l]) continue;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(lane_of(be, l));
     vectors[l] = eig.eigenvectors();
@@ -330,7 +330,7 @@ void j2_update(const J2Params& p, J2Batch& b) {
   // spectrally where the stretch is large.
   const Sym deps_p = (1 - scale) * dev;
   Sym be_new = commuting_product(be, exp_series(splat(-2) * deps_p, 2 * sqrt(norm2(deps_p))));
-  for (int l = 0; l < kLanes; ++l) {
+  for (int l = 0; l < kLanes && any_spectral; ++l) {
     if (!spectral[l] || !b.plastic[l]) continue;
     const Eigen::Matrix3d& V = vectors[l];
     const Eigen::Vector3d e = (V.transpose() * lane_of(scale * dev + identity_sym(vol / 3), l) * V).diagonal();

@@ -5,6 +5,9 @@
 // Symmetric tensors in Voigt order xx, yy, zz, xy, yz, zx; full tensors row-major.
 #pragma once
 #include <cmath>
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 namespace rk {
 
@@ -22,14 +25,33 @@ inline Lane splat(double x) { return Lane{} + x; }
 // m ? a : b lane by lane, as a bitwise blend (casts between vectors of one size keep the bits;
 // the vector ?: compiles to per-element branches without AVX)
 inline Lane select(LaneMask m, Lane a, Lane b) { return (Lane)(((LaneMask)a & m) | ((LaneMask)b & ~m)); }
+// one instruction for the lanes (the per-lane form keeps a scalar square root and its errno check):
+// IEEE square roots, correctly rounded, so the bits are the per-lane ones
 inline Lane sqrt(Lane x) {
+#if defined(__AVX512F__)
+  return (Lane)_mm512_sqrt_pd((__m512d)x);
+#elif defined(__AVX__)
+  return (Lane)_mm256_sqrt_pd((__m256d)x);
+#elif defined(__SSE2__)
+  return (Lane)_mm_sqrt_pd((__m128d)x);
+#else
   for (int l = 0; l < kLanes; ++l) x[l] = __builtin_sqrt(x[l]);
   return x;
+#endif
 }
+// whether a lane is true: one test of the register (the per-lane form branches on every lane)
 inline bool any(LaneMask m) {
+#if defined(__AVX512F__)
+  return _mm512_test_epi64_mask((__m512i)m, (__m512i)m) != 0;
+#elif defined(__AVX__)
+  return _mm256_movemask_pd((__m256d)m) != 0;  // the sign bits: a true lane is -1
+#elif defined(__SSE2__)
+  return _mm_movemask_pd((__m128d)m) != 0;
+#else
   for (int l = 0; l < kLanes; ++l)
     if (m[l]) return true;
   return false;
+#endif
 }
 
 // r^(1/3) for r near 1 (the F-bar ratio Jbar/J): two Newton steps from 1 + e/3 - e^2/9, e = r - 1,
@@ -40,6 +62,7 @@ inline Lane cube_root_near_one(Lane r) {
   Lane x = 1 + e * (1.0 / 3 - e * (1.0 / 9));
   for (int i = 0; i < 2; ++i) x -= (x * x * x - r) / (3 * x * x);
   const LaneMask far = (e > 0.1) | (e < -0.1);
+  if (!any(far)) return x;
   for (int l = 0; l < kLanes; ++l)
     if (far[l]) x[l] = std::cbrt(r[l]);
   return x;
@@ -62,6 +85,7 @@ inline Lane exp(Lane x) {
   for (int n = 12; n >= 0; --n) factorial /= (n + 1), p = 1 / factorial + r * p;  // (n! <= 13! exact)
   const LaneMask bits = (__builtin_convertvector(k, LaneMask) + 1023) << 52;
   Lane y = p * (Lane)bits;
+  if (!any(~((x <= 700) & (x >= -700)))) return y;  // (NaN lanes are out of range)
   for (int l = 0; l < kLanes; ++l)
     if (!(std::abs(x[l]) <= 700)) y[l] = std::exp(x[l]);
   return y;
@@ -84,6 +108,7 @@ inline Lane log(Lane x) {
   R *= z;
   const Lane ef = __builtin_convertvector(e, Lane);
   Lane y = ef * ln2_hi - ((half_f2 - (s * (half_f2 + R) + ef * ln2_lo)) - f);
+  if (!any(~((x >= 0x1p-1022) & (x <= 0x1.fffffffffffffp1023)))) return y;
   for (int l = 0; l < kLanes; ++l)
     if (!(x[l] >= 0x1p-1022 && x[l] <= 0x1.fffffffffffffp1023)) y[l] = std::log(x[l]);
   return y;

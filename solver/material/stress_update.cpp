@@ -23,8 +23,13 @@ Mat lanes_of_F(const State& st, std::size_t g, int n) {
 // the lanes; with a thermal strain their stress-free stretches into `stretch`.
 void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n, const Mat& F, J2Batch& b,
           Lane& stretch) {
-  Lane r = splat(1);  // Jbar / J
-  for (int l = 0; l < n && md.fbar; ++l) r[l] = st.cell_J[c] / st.J[g + l];
+  Lane r = splat(1);  // Jbar / J (the lanes at rest: 1)
+  if (md.fbar) {
+    Lane J = splat(1);
+    LaneMask used{};
+    for (int l = 0; l < n; ++l) J[l] = st.J[g + l], used[l] = -1;
+    r = select(used, st.cell_J[c] / J, r);
+  }
   Lane ratio = cube_root_near_one(r);
   // the thermal stretch taken out: F_mech = F / stretch(T) (1 + alpha (T - T0), or from rho(T)). C_p^-1 is
   // pushed forward at a reference update with the whole F, so the total stretch is right here.
@@ -64,9 +69,12 @@ void first_piola(const Model& md, State& st, std::size_t g, int n, double pc, co
       P[3 * i + j] = (t.v[3 * i] * cof.v[j] + t.v[3 * i + 1] * cof.v[3 + j] + t.v[3 * i + 2] * cof.v[6 + j]) * inv_det;
       norm2 += P[3 * i + j] * P[3 * i + j];
     }
+  Lane w{}, dN_max{};
+  for (int l = 0; l < n; ++l) w[l] = md.weight[g + l], dN_max[l] = md.dN_max[g + l];
+  const Lane bound = w * sqrt(norm2) * dN_max;
   for (int l = 0; l < n; ++l) {
     for (int i = 0; i < 9; ++i) st.P[9 * (g + l) + i] = P[i][l];
-    st.force_bound[g + l] = md.weight[g + l] * std::sqrt(norm2[l]) * md.dN_max[g + l];
+    st.force_bound[g + l] = bound[l];
   }
 }
 
@@ -142,6 +150,9 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
       Lane stretch;
       load(md, st, c, g, n, F, b, stretch);
       j2_update(law, b);
+      Lane weight{};
+      for (int l = 0; l < n; ++l) weight[l] = md.weight[g + l];
+      const Lane weighted_mean = weight * (b.tau.v[0] + b.tau.v[1] + b.tau.v[2]) / 3;  // w tr(tau) / 3, for the cell's pressure
       for (int l = 0; l < n; ++l) {
         const std::size_t p = g + l;
         double* t = &st.tau[6 * p];
@@ -164,7 +175,7 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
           if (!st.heat_pending.empty()) st.heat_pending[p] += heating;
         }
         health.plastic += b.plastic[l] != 0;
-        wp += md.weight[p] * (t[0] + t[1] + t[2]) / 3;
+        wp += weighted_mean[l];
         wJ += md.weight[p] * st.total_J(p);
         w += md.weight[p];
         // The material's volume ratio (the cell's with F-bar): no solid metal is squeezed to half its
