@@ -27,11 +27,9 @@ Sym log_series(const Sym& X, Lane norm, LaneMask use) {
     m += select(more, splat(1), Lane{});
   }
   const Sym Y2 = commuting_product(Y, Y);
-  Sym r{};
-  for (int k = int(*std::max_element(&m[0], &m[0] + kLanes)); k >= 0; --k) {
-    const Sym start = identity_sym(splat(1.0 / (2 * k + 1)));
-    r = select(m == double(k), start, select(m > double(k), start + commuting_product(Y2, r), r));
-  }
+  Sym r{};  // (a lane's first term is 1 / (2m + 1) I + Y^2 0, exactly its start)
+  for (int k = int(*std::max_element(&m[0], &m[0] + kLanes)); k >= 0; --k)
+    r = select(m >= double(k), identity_sym(splat(1.0 / (2 * k + 1))) + commuting_product(Y2, r), r);
   return splat(2) * commuting_product(Y, r);
 }
 
@@ -163,9 +161,8 @@ void binomial_series(Lane u, const J2Params& p, Lane& value, Lane& slope) {
     if (!any(more)) break;
     m += select(more, splat(1), Lane{});
   }
-  Lane r{};
-  for (int k = int(*std::max_element(&m[0], &m[0] + kLanes)); k >= 0; --k)
-    r = select(m == double(k), splat(c[k]), select(m > double(k), c[k] + u * r, r));
+  Lane r{};  // (a lane's first term is c[m] + u 0 = c[m] exactly)
+  for (int k = int(*std::max_element(&m[0], &m[0] + kLanes)); k >= 0; --k) r = select(m >= double(k), c[k] + u * r, r);
   value = r;
   slope = p.exponent * r / (1 + u);
 }
@@ -182,14 +179,13 @@ Lane power_law_return(const J2Params& p, Lane q, J2Batch& b) {
   LaneMask series{};
   const Lane z0 = p.eps0 + b.ep;
   const Lane y0 = p.strength * exp(p.exponent * log(z0)), h0 = p.exponent * y0 / z0;  // sigma_y and its slope at ep
-  for (int l = 0; l < kLanes; ++l) {
+  b.plastic = q > y0;
+  if (!any(b.plastic)) return dgamma;
+  series = b.plastic & ((q - y0) / (3 * p.shear) <= 0.25 * z0);
+  const LaneMask by_pow = b.plastic & ~series;
+  for (int l = 0; l < kLanes && any(by_pow); ++l) {
+    if (!by_pow[l]) continue;
     double y = y0[l], h = h0[l];
-    if (!(q[l] > y)) continue;
-    b.plastic[l] = -1;
-    if ((q[l] - y) / (3 * p.shear) <= 0.25 * z0[l]) {
-      series[l] = -1;
-      continue;
-    }
     double dg = (q[l] - y) / (3 * p.shear + h);
     for (int it = 0; it < 50; ++it) {
       p.yield_and_slope(b.ep[l] + dg, y, h);
