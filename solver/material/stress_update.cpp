@@ -50,17 +50,28 @@ void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n,
   b.dt = st.dt_half;  // the increment from the last state took the last step (0 at the start: no rate)
 }
 
-// P = tau_eff F^{-T} = tau_eff cof(F) / det F for the points g .. g+n, and their force bounds.
-void first_piola(const Model& md, State& st, std::size_t g, int n, double pc, const Mat& F) {
+// tau of the points g .. g+n across the lanes (the rest of the lanes the last point's).
+Sym lanes_of_tau(const State& st, std::size_t g, int n) {
+  Sym tau;
+  for (int l = 0; l < kLanes; ++l)
+    for (int i = 0; i < 6; ++i) tau.v[i][l] = st.tau[6 * (g + std::size_t(std::min(l, n - 1))) + i];
+  return tau;
+}
+
+// P = tau_eff F^{-T} = tau_eff cof(F) / det F for the points g .. g+n (tau theirs across the lanes),
+// and their force bounds.
+void first_piola(const Model& md, State& st, std::size_t g, int n, double pc, const Mat& F, const Sym& tau) {
   Mat cof;
-  Sym te;
+  Lane J{}, q{};  // the volume ratio from t = 0 and the bulk viscosity's pressure (the rest of the lanes the last point's)
   for (int l = 0; l < kLanes; ++l) {
-    const std::size_t p = g + std::min(l, n - 1);
-    const double* t = &st.tau[6 * p];
-    double shift = md.fbar ? st.total_J(p) * pc - (t[0] + t[1] + t[2]) / 3 : 0.0;
-    if (!st.q.empty()) shift -= st.total_J(p) * st.q[p];  // the bulk viscosity's pressure (material/bulk_viscosity.hpp)
-    for (int i = 0; i < 6; ++i) te.v[i][l] = t[i] + (i < 3 ? shift : 0.0);
+    const std::size_t p = g + std::size_t(std::min(l, n - 1));
+    J[l] = st.total_J(p);
+    if (!st.q.empty()) q[l] = st.q[p];
   }
+  Lane shift = md.fbar ? J * pc - (tau.v[0] + tau.v[1] + tau.v[2]) / 3 : Lane{};
+  if (!st.q.empty()) shift -= J * q;  // (material/bulk_viscosity.hpp)
+  Sym te = tau;
+  for (int i = 0; i < 3; ++i) te.v[i] += shift;
   const Lane inv_det = 1 / cofactor(F, cof);
   const Mat t = full(te);
   Lane P[9], norm2{};
@@ -142,7 +153,8 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
     if (!cell_ok) continue;
     double wp = 0, wJ = 0, w = 0, ep_max = 0;
     double increment[kMaxCellPoints];  // the points' plastic strain increments (for the damage)
-    Mat F_batch[kMaxCellPoints / kLanes];  // the batches' F, again for P once the cell's pressure is known
+    Mat F_batch[kMaxCellPoints / kLanes];  // the batches' F and tau, again for P once the cell's pressure is known
+    Sym tau_batch[kMaxCellPoints / kLanes];
     for (auto g = g0; g < g1; g += kLanes) {
       const int n = int(std::min<std::size_t>(kLanes, g1 - g));
       const Mat F = lanes_of_F(st, g, n);
@@ -150,6 +162,7 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
       Lane stretch;
       load(md, st, c, g, n, F, b, stretch);
       j2_update(law, b);
+      if ((g - g0) / kLanes < std::size(tau_batch)) tau_batch[(g - g0) / kLanes] = b.tau;
       Lane weight{};
       for (int l = 0; l < n; ++l) weight[l] = md.weight[g + l];
       const Lane weighted_mean = weight * (b.tau.v[0] + b.tau.v[1] + b.tau.v[2]) / 3;  // w tr(tau) / 3, for the cell's pressure
@@ -196,7 +209,8 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
     for (auto g = g0; g < g1; g += kLanes) {
       const int n = int(std::min<std::size_t>(kLanes, g1 - g));
       const std::size_t k = (g - g0) / kLanes;
-      first_piola(md, st, g, n, pc, k < std::size(F_batch) ? F_batch[k] : lanes_of_F(st, g, n));
+      if (k < std::size(F_batch)) first_piola(md, st, g, n, pc, F_batch[k], tau_batch[k]);
+      else first_piola(md, st, g, n, pc, lanes_of_F(st, g, n), lanes_of_tau(st, g, n));
     }
   }
   st.thermal_work += thermal_work;
