@@ -29,7 +29,7 @@ inline Lane select(LaneMask m, Lane a, Lane b) { return (Lane)(((LaneMask)a & m)
 // IEEE square roots, correctly rounded, so the bits are the per-lane ones
 inline Lane sqrt(Lane x) {
 #if defined(__AVX512F__)
-  return (Lane)_mm512_sqrt_pd((__m512d)x);
+  return (Lane)_mm512_mask_sqrt_pd((__m512d)x, __mmask8(0xff), (__m512d)x);  // (the unmasked form warns in GCC 12)
 #elif defined(__AVX__)
   return (Lane)_mm256_sqrt_pd((__m256d)x);
 #elif defined(__SSE2__)
