@@ -272,7 +272,7 @@ void Simulation::time_step() {
   double bound = contact_bound_;
   for (std::size_t g = 0; g < md_.m; ++g) bound = std::max(bound, st_.force_bound[g]);
   healthy_ = stress_.ok && std::isfinite(bound);
-  stable_ = stable_time_step(md_, st_, scene_.time.cfl);
+  stable_ = stable_time_step(md_, st_, scene_.time.cfl, true, stable_.cell);
   if (frequency_) stable_.dt *= frequency_->step_ratio(md_, st_, comm_);  // the same on every rank
   const double update_strain = scene_.reference_updates.strain;
   limits_.dt = stable_.dt;

@@ -19,8 +19,10 @@ struct StableStep {
   std::size_t cell;  // the cell that sets it
 };
 
-// `damped`: with bulk viscosity's factors (the step); without them, the undamped estimate.
-StableStep stable_time_step(const Model& md, const State& st, double cfl, bool damped = true);
+// `damped`: with bulk viscosity's factors (the step); without them, the undamped estimate. `first`: a
+// cell to measure first (the last step's; the same step whatever it is, only sooner).
+StableStep stable_time_step(const Model& md, const State& st, double cfl, bool damped = true,
+                            std::size_t first = std::size_t(-1));
 
 // Smallest principal stretch of F: sqrt of the smallest eigenvalue of C = F^T F (closed form);
 // det F as the kinematics computed it (State::J).
