@@ -12,11 +12,9 @@ namespace rk {
 namespace {
 
 // F of the points g .. g+n across the lanes (the rest of the lanes the identity).
-Mat lanes_of_F(const State& st, std::size_t g, int n) {
-  Mat F{};
+void lanes_of_F(const State& st, std::size_t g, int n, Mat& F) {
   for (int l = 0; l < kLanes; ++l)
     for (int i = 0; i < 9; ++i) F.v[i][l] = l < n ? st.F[9 * (g + l) + i] : (i % 4 == 0);
-  return F;
 }
 
 // The points g .. g+n of one cell, kLanes at a time (the rest of the lanes at rest), F theirs across
@@ -136,7 +134,10 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
   double thermal_work = 0;
   double floor = std::numeric_limits<double>::infinity();
   for (const Solid& s : md.materials) floor = std::min(floor, bound.impact + (s.law.plastic ? s.law.yield(0.0) : 0.0));
-  J2Batch b;
+  // a cell's batches and their F, kept for P once the cell's pressure is known (filled in place: a
+  // copy of these structs is a memmove call), and the room for a batch past them
+  J2Batch batch[kMaxCellPoints / kLanes], spare;
+  Mat F_batch[kMaxCellPoints / kLanes], spare_F;
   // F-bar couples the points of a cell; without it (volumetric: none, nodal integration) the points
   // go kLanes at a time whatever their cells, of one material each batch
   for (std::size_t c = 0, g0 = 0, g1 = 0; md.fbar ? c < md.cells : g1 < md.m; ++c, g0 = g1) {
@@ -153,16 +154,15 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
     if (!cell_ok) continue;
     double wp = 0, wJ = 0, w = 0, ep_max = 0;
     double increment[kMaxCellPoints];  // the points' plastic strain increments (for the damage)
-    Mat F_batch[kMaxCellPoints / kLanes];  // the batches' F and tau, again for P once the cell's pressure is known
-    Sym tau_batch[kMaxCellPoints / kLanes];
     for (auto g = g0; g < g1; g += kLanes) {
       const int n = int(std::min<std::size_t>(kLanes, g1 - g));
-      const Mat F = lanes_of_F(st, g, n);
-      if ((g - g0) / kLanes < std::size(F_batch)) F_batch[(g - g0) / kLanes] = F;
+      const std::size_t k = (g - g0) / kLanes;
+      Mat& F = k < std::size(batch) ? F_batch[k] : spare_F;
+      J2Batch& b = k < std::size(batch) ? batch[k] : spare;
+      lanes_of_F(st, g, n, F);
       Lane stretch;
       load(md, st, c, g, n, F, b, stretch);
       j2_update(law, b);
-      if ((g - g0) / kLanes < std::size(tau_batch)) tau_batch[(g - g0) / kLanes] = b.tau;
       Lane weight{};
       for (int l = 0; l < n; ++l) weight[l] = md.weight[g + l];
       const Lane weighted_mean = weight * (b.tau.v[0] + b.tau.v[1] + b.tau.v[2]) / 3;  // w tr(tau) / 3, for the cell's pressure
@@ -209,8 +209,12 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
     for (auto g = g0; g < g1; g += kLanes) {
       const int n = int(std::min<std::size_t>(kLanes, g1 - g));
       const std::size_t k = (g - g0) / kLanes;
-      if (k < std::size(F_batch)) first_piola(md, st, g, n, pc, F_batch[k], tau_batch[k]);
-      else first_piola(md, st, g, n, pc, lanes_of_F(st, g, n), lanes_of_tau(st, g, n));
+      if (k < std::size(batch)) {
+        first_piola(md, st, g, n, pc, F_batch[k], batch[k].tau);
+      } else {
+        lanes_of_F(st, g, n, spare_F);
+        first_piola(md, st, g, n, pc, spare_F, lanes_of_tau(st, g, n));
+      }
     }
   }
   st.thermal_work += thermal_work;
