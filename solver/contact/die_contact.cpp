@@ -54,6 +54,11 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
   const std::size_t obstacles = dies_.size() + planes_.size();
   active_.reserve(slaves * obstacles);
   clearance_.assign(slaves * obstacles, 0.0);  // 0: looked up at the first step
+  const std::size_t blocks = (slaves + kBlock - 1) / kBlock;
+  block_N_sum_.assign(blocks, 0.0);
+  for (std::size_t s = 0; s < slaves; ++s) block_N_sum_[s / kBlock] = std::max(block_N_sum_[s / kBlock], N_sum_[s]);
+  block_floor_.assign(blocks * obstacles, 0.0), block_moved_.assign(blocks * obstacles, 0.0);
+  block_die_moved_.assign(blocks * obstacles, 0.0);
   // A particle on a symmetry plane (or, with nodal integration, its point) is held on it by the
   // essential BCs, both ways (u . n = 0); a one-sided penalty on it as well would push back the
   // material that crossed and let go of what moved away, a bias away from the plane (docs/decisions.md,
@@ -178,42 +183,59 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
       for (int i = 0; i < 3; ++i) hit.gap += (x[i] - p.point[i]) * p.normal[i];
       return hit;
     };
-    // each slave's clearance less the most it and the obstacle can have moved (one pass that
-    // vectorizes); a slave is skipped while it cannot have reached the obstacle
+    // each slave's clearance less the most it and the obstacle can have moved; a slave is skipped while
+    // it cannot have reached the obstacle, and a block of slaves while none of them can (its floor): its
+    // motion is then kept for it and taken off its slaves when it is next looked into
     double* clearance = &clearance_[k * slaves];
     const double* N_sum = N_sum_.data();
-    for (std::size_t s = 0; s < slaves; ++s) clearance[s] -= N_sum[s] * moved + die_moved;
-    for (std::size_t s = 0; s < slaves; ++s) {
-      double& c = clearance[s];
-      if (c > clear) continue;
-      double x[3];
-      material_point(md, st, s, x);
-      const DieHit hit = nearest(s, x);
-      c = hit.found ? std::max(hit.gap, 0.0) : margin;
-      if (!hit.found || hit.gap >= 0) continue;
-      const double depth = -hit.gap, m = mass_[s];
-      const double kI = penalty_stiffness(penalty_scale_, m, dt_min, dt);
-      Active a{std::int32_t(s), std::int32_t(k), {}, {}, die ? hit.triangle : -1};
-      if (die) touched_[triangle0_[k] + std::size_t(hit.triangle)] = 1;
-      penalty_force(kI, depth, hit.normal, a.normal_force);
-      double v_rel[3], vt[3];  // the material's velocity relative to the obstacle
-      material_value(md, st.v, s, v_rel);
-      if (die)
-        for (int i = 0; i < 3; ++i) v_rel[i] -= rate * mo->direction[i];
-      const double vt_norm = tangential_velocity(v_rel, hit.normal, vt);
-      // the stick force stops the sliding in one step; a point's half of it: a particle and the points
-      // around it sample the same interface, and together they must not reverse it
-      const double stick = (s < particles_.size() ? 1.0 : 0.5) * m * vt_norm / dt;
-      coulomb_friction(mu, kI * depth, stick, vt, vt_norm, a.friction_force);
-      for (int i = 0; i < 3; ++i) {
-        tot.force[i] += a.normal_force[i] + a.friction_force[i];
-        largest = std::max(largest, N_max_[s] * std::abs(a.normal_force[i] + a.friction_force[i]));
+    const std::size_t blocks = block_N_sum_.size();
+    for (std::size_t b = 0; b < blocks; ++b) {
+      double& lowest = block_floor_[k * blocks + b];
+      double& pending = block_moved_[k * blocks + b];
+      double& pending_die = block_die_moved_[k * blocks + b];
+      pending += moved, pending_die += die_moved;
+      lowest -= block_N_sum_[b] * moved + die_moved;
+      if (lowest > clear) continue;
+      const std::size_t s0 = b * kBlock, s1 = std::min(slaves, s0 + kBlock);
+      for (std::size_t s = s0; s < s1; ++s) clearance[s] -= N_sum[s] * pending + pending_die;
+      pending = pending_die = 0;
+      lowest = std::numeric_limits<double>::infinity();
+      for (std::size_t s = s0; s < s1; ++s) {
+        double& c = clearance[s];
+        if (c > clear) {
+          lowest = std::min(lowest, c);
+          continue;
+        }
+        double x[3];
+        material_point(md, st, s, x);
+        const DieHit hit = nearest(s, x);
+        c = hit.found ? std::max(hit.gap, 0.0) : margin;
+        lowest = std::min(lowest, c);
+        if (!hit.found || hit.gap >= 0) continue;
+        const double depth = -hit.gap, m = mass_[s];
+        const double kI = penalty_stiffness(penalty_scale_, m, dt_min, dt);
+        Active a{std::int32_t(s), std::int32_t(k), {}, {}, die ? hit.triangle : -1};
+        if (die) touched_[triangle0_[k] + std::size_t(hit.triangle)] = 1;
+        penalty_force(kI, depth, hit.normal, a.normal_force);
+        double v_rel[3], vt[3];  // the material's velocity relative to the obstacle
+        material_value(md, st.v, s, v_rel);
+        if (die)
+          for (int i = 0; i < 3; ++i) v_rel[i] -= rate * mo->direction[i];
+        const double vt_norm = tangential_velocity(v_rel, hit.normal, vt);
+        // the stick force stops the sliding in one step; a point's half of it: a particle and the points
+        // around it sample the same interface, and together they must not reverse it
+        const double stick = (s < particles_.size() ? 1.0 : 0.5) * m * vt_norm / dt;
+        coulomb_friction(mu, kI * depth, stick, vt, vt_norm, a.friction_force);
+        for (int i = 0; i < 3; ++i) {
+          tot.force[i] += a.normal_force[i] + a.friction_force[i];
+          largest = std::max(largest, N_max_[s] * std::abs(a.normal_force[i] + a.friction_force[i]));
+        }
+        if (depth > tot.max_penetration && !die && k - dies_.size() >= walls_) deepest_ = std::int32_t(s);
+        tot.max_penetration = std::max(tot.max_penetration, depth);
+        tot.spring_energy += 0.5 * kI * depth * depth;
+        (s < particles_.size() ? tot.contacts : tot.point_contacts) += 1;
+        active_.push_back(a);
       }
-      if (depth > tot.max_penetration && !die && k - dies_.size() >= walls_) deepest_ = std::int32_t(s);
-      tot.max_penetration = std::max(tot.max_penetration, depth);
-      tot.spring_energy += 0.5 * kI * depth * depth;
-      (s < particles_.size() ? tot.contacts : tot.point_contacts) += 1;
-      active_.push_back(a);
     }
   }
   if (shear_) face_friction(md, st, t, dt, largest);

@@ -139,6 +139,11 @@ class DieContact {
   std::vector<double> mass_, N_sum_, N_max_;  // per slave: m, sum_J |N_J|, max_J |N_J|
   // per obstacle and slave: a lower bound on its distance to the obstacle
   std::vector<double> clearance_;
+  // the slaves in blocks of kBlock: per block its largest sum_J |N_J|, and per obstacle and block a lower
+  // bound on its slaves' clearances and the motion (coefficients', obstacle's) not yet taken off them,
+  // so that a block that cannot touch costs one subtraction a step, not one a slave
+  static constexpr std::size_t kBlock = 64;
+  std::vector<double> block_N_sum_, block_floor_, block_moved_, block_die_moved_;
   std::vector<double> u_last_, stroke_last_;  // at the last compute
   std::vector<Active> active_;        // reserved once: no allocation per step
 
