@@ -483,15 +483,14 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   for (const Die& d : scene_.dies) rates = rates || d.shear_factor > 0;
   if (rates) st_.plastic_rate.assign(md_.m, 0.0);
   if (md_.thermal_strain()) st_.stretch_last.assign(md_.m, 0.0);
-  if (scene_.damage.on()) {
-    st_.damage.assign(kDamageCriteria * md_.m, 0.0);
-    std::int64_t crowded = -1;  // a cell with more points than the damage's per-cell scratch holds
-    for (std::size_t c = 0; md_.fbar && c < md_.cells && crowded < 0; ++c)
-      if (std::size_t(md_.cell_points[c + 1] - md_.cell_points[c]) > kMaxCellPoints) crowded = std::int64_t(c);
-    comm.check(crowded < 0, "cell " + std::to_string(crowded) + " of rank " + std::to_string(comm.rank()) +
-                                " holds more than " + std::to_string(kMaxCellPoints) +
-                                " integration points; the damage criteria take at most that (lower discretization.gauss_order)");
-  }
+  if (scene_.damage.on()) st_.damage.assign(kDamageCriteria * md_.m, 0.0);
+  std::int64_t crowded = -1;  // an F-bar cell with more points than the stress update's per-cell scratch holds
+  for (std::size_t c = 0; md_.fbar && c < md_.cells && crowded < 0; ++c)
+    if (std::size_t(md_.cell_points[c + 1] - md_.cell_points[c]) > kMaxCellPoints) crowded = std::int64_t(c);
+  comm.check(crowded < 0, "cell " + std::to_string(crowded) + " of rank " + std::to_string(comm.rank()) + " in " +
+                              subdomain_path(opt_.case_dir, comm.rank()) + " holds more than " +
+                              std::to_string(kMaxCellPoints) +
+                              " integration points, the most an F-bar cell may hold (rkprep makes at most 27); re-run rkprep");
   if (scene_.material.conducting())  // set by HeatTransfer::start or read from the checkpoint
     st_.particle_temperature.assign(md_.n, scene_.initial.temperature), st_.heat_pending.assign(md_.m, 0.0),
     st_.surface_heat.assign(md_.n, 0.0);

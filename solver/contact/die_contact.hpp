@@ -12,8 +12,9 @@
 // or the point's rho w_g, dt_min the smallest stable step so far, so contact never shortens it) and Coulomb friction
 // with a stick force that stops the sliding in one step; a point's stick force stops half of it.
 // A slave is looked up only when its clearance at its last lookup, less how far it and the die may
-// have moved since, may have run out, and a block of slaves only when its least clearance may have. Computed by each particle's and each point's OWNER only; the
-// forces enter the fixed-point partial sums, so shared copies receive them exactly once.
+// have moved since, may have run out, and a block of slaves only when its least clearance may have.
+// Computed by each particle's and each point's OWNER only; the forces enter the fixed-point partial
+// sums, so shared copies receive them exactly once.
 // Why each choice, with what was measured: docs/decisions.md, "Contact".
 #pragma once
 #include <memory>

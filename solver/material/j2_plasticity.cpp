@@ -176,12 +176,11 @@ void binomial_series(Lane u, const J2Params& p, Lane& value, Lane& slope) {
 // (steps of 1e-5 on 1 m/s upsetting); 50 iterations only guard the loop.
 Lane power_law_return(const J2Params& p, Lane q, J2Batch& b) {
   Lane dgamma{};
-  LaneMask series{};
   const Lane z0 = p.eps0 + b.ep;
   const Lane y0 = p.strength * exp(p.exponent * log(z0)), h0 = p.exponent * y0 / z0;  // sigma_y and its slope at ep
   b.plastic = q > y0;
   if (!any(b.plastic)) return dgamma;
-  series = b.plastic & ((q - y0) / (3 * p.shear) <= 0.25 * z0);
+  const LaneMask series = b.plastic & ((q - y0) / (3 * p.shear) <= 0.25 * z0);
   const LaneMask by_pow = b.plastic & ~series;
   for (int l = 0; l < kLanes && any(by_pow); ++l) {
     if (!by_pow[l]) continue;

@@ -48,14 +48,6 @@ void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n,
   b.dt = st.dt_half;  // the increment from the last state took the last step (0 at the start: no rate)
 }
 
-// tau of the points g .. g+n across the lanes (the rest of the lanes the last point's).
-Sym lanes_of_tau(const State& st, std::size_t g, int n) {
-  Sym tau;
-  for (int l = 0; l < kLanes; ++l)
-    for (int i = 0; i < 6; ++i) tau.v[i][l] = st.tau[6 * (g + std::size_t(std::min(l, n - 1))) + i];
-  return tau;
-}
-
 // P = tau_eff F^{-T} = tau_eff cof(F) / det F for the points g .. g+n (tau theirs across the lanes),
 // and their force bounds.
 void first_piola(const Model& md, State& st, std::size_t g, int n, double pc, const Mat& F, const Sym& tau) {
@@ -135,9 +127,9 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
   double floor = std::numeric_limits<double>::infinity();
   for (const Solid& s : md.materials) floor = std::min(floor, bound.impact + (s.law.plastic ? s.law.yield(0.0) : 0.0));
   // a cell's batches and their F, kept for P once the cell's pressure is known (filled in place: a
-  // copy of these structs is a memmove call), and the room for a batch past them
-  J2Batch batch[kMaxCellPoints / kLanes], spare;
-  Mat F_batch[kMaxCellPoints / kLanes], spare_F;
+  // copy of these structs is a memmove call); an F-bar cell holds at most kMaxCellPoints points
+  J2Batch batch[(kMaxCellPoints + kLanes - 1) / kLanes];
+  Mat F_batch[std::size(batch)];
   // F-bar couples the points of a cell; without it (volumetric: none, nodal integration) the points
   // go kLanes at a time whatever their cells, of one material each batch
   for (std::size_t c = 0, g0 = 0, g1 = 0; md.fbar ? c < md.cells : g1 < md.m; ++c, g0 = g1) {
@@ -157,8 +149,8 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
     for (auto g = g0; g < g1; g += kLanes) {
       const int n = int(std::min<std::size_t>(kLanes, g1 - g));
       const std::size_t k = (g - g0) / kLanes;
-      Mat& F = k < std::size(batch) ? F_batch[k] : spare_F;
-      J2Batch& b = k < std::size(batch) ? batch[k] : spare;
+      Mat& F = F_batch[k];
+      J2Batch& b = batch[k];
       lanes_of_F(st, g, n, F);
       Lane stretch;
       load(md, st, c, g, n, F, b, stretch);
@@ -209,12 +201,7 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
     for (auto g = g0; g < g1; g += kLanes) {
       const int n = int(std::min<std::size_t>(kLanes, g1 - g));
       const std::size_t k = (g - g0) / kLanes;
-      if (k < std::size(batch)) {
-        first_piola(md, st, g, n, pc, F_batch[k], batch[k].tau);
-      } else {
-        lanes_of_F(st, g, n, spare_F);
-        first_piola(md, st, g, n, pc, spare_F, lanes_of_tau(st, g, n));
-      }
+      first_piola(md, st, g, n, pc, F_batch[k], batch[k].tau);
     }
   }
   st.thermal_work += thermal_work;

@@ -16,8 +16,9 @@ namespace rk {
 // The material's volume ratio J below which (or above whose inverse) the state is not physical.
 inline constexpr double kMinVolumeRatio = 0.5;
 
-// The most points an F-bar cell may hold where damage is integrated (a hexahedron at gauss_order 3
-// holds 27): the damage keeps a cell's plastic strain increments on the stack.
+// The most points an F-bar cell may hold (a hexahedron at gauss_order 3 holds 27): update_stress keeps
+// a cell's batches, and the damage its plastic strain increments, on the stack. rksolve refuses a
+// subdomain with more at the start.
 inline constexpr std::size_t kMaxCellPoints = 32;
 
 // The pressure's health bound. No metal under an impact at speed v or a tool pressing it carries a

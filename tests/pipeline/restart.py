@@ -60,7 +60,7 @@ tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", stale, "--quiet", "--resta
            "--set", "time.output_interval=2e-6"])
 rkcase.check(same(reference, final(stale)), "a new run drops an older run's checkpoints: its restart ends bitwise equal")
 
-# CFL 0.03 (about 12 800 steps, 2-3 s): at larger steps this run can end before the test has found its
+# CFL 0.03 (12 755 steps, 2.8 s on 2026-12-04): at larger steps this run can end before the test has found its
 # ranks to kill or its Ctrl-C has reached them (at 0.5 it took 0.65 s; at 0.1, 3 827 steps, 0.87 s once
 # the solver had got faster, on 2026-12-04, and the Ctrl-C came after the end)
 long = ["time.end=16e-6", "time.output_interval=4e-6", "output.checkpoint_steps=50", "time.cfl=0.03"]

@@ -20,7 +20,7 @@ Eigen::Matrix3d matrix(const double* a) {  // row-major 3x3
 }
 
 // One cell of 10 points (more than one batch of lanes on every build), each F = diag(s_g) (I + gamma_g
-// e_x (x) e_y): volume ratio s_g^3, elastic (volume strains of 1e-3, shears of 1e-3 in copper).
+// e_x (x) e_y): volume ratio s_g^3, elastic (volume strains up to 4e-3, shears up to 3e-3 in copper).
 struct Cell {
   rk::Model md;
   rk::State st;
@@ -49,8 +49,8 @@ struct Cell {
 
 // Measured 2026-12-04: the pressures within 6.3e-12 of K ln(J_bar) (the round-off of ln J_bar = 7.3e-5
 // and of the F-bar scaling), P F^T within 2.7e-16 of |tau_eff|, the bounds equal; the tolerances are about
-// twice that (a bound two ulp). Leaving out the F-bar ratio puts a point's pressure up to 20x off; a bound
-// without grad N is 1e3x off.
+// twice that (a bound two ulp). Leaving out the F-bar ratio gives each point K ln(J_g), -55 to +55 times
+// K ln(J_bar) here; a bound without grad N is at least 1e3x off.
 TEST(StressUpdate, FbarCellPressureAndForceBounds) {
   for (const bool viscous : {false, true}) {
     Cell c(viscous);
