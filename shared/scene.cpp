@@ -488,6 +488,31 @@ Material read_material(Section& parent, const std::string& key, const std::files
   }
 }
 
+// Multi-rate steps hold each point's state over its own step; what needs the state of every point at
+// every step, or the length of a point's own step, is not built for them yet: one error naming the key.
+void check_subcycling(const Scene& s) {
+  if (s.time.subcycling == 1) return;
+  auto refuse = [&](const std::string& what) {
+    throw Error(s.file.string() + ": key 'time.subcycling' = " + std::to_string(s.time.subcycling) +
+                " cannot be combined with " + what + " (not built yet; docs/scene.md)");
+  };
+  if (s.discretization.integration != "gauss" || s.discretization.volumetric != "fbar")
+    refuse("'discretization.integration' other than gauss with 'volumetric' = fbar");
+  if (s.time.stable_step != "cells") refuse("'time.stable_step' = " + s.time.stable_step);
+  if (s.reference_updates.strain > 0) refuse("'reference_updates.strain' > 0");
+  if (s.bulk_viscosity.on()) refuse("bulk viscosity (set 'bulk_viscosity.quadratic' and 'linear' to 0)");
+  if (!s.bodies.empty() || s.contact.self) refuse("'geometry.bodies' or 'contact.self' (the part's own contact)");
+  auto rate_or_heat = [](const Material& m) {
+    return m.thermal() || m.model == MaterialModel::johnson_cook || m.model == MaterialModel::hansel_spittel ||
+           m.model == MaterialModel::table;
+  };
+  if (rate_or_heat(s.material)) refuse("a rate-dependent material or a temperature ('material')");
+  for (const Die& d : s.dies) {
+    if (d.motion.driven()) refuse("die '" + d.name + "' driven by its press");
+    if (d.shear_factor > 0) refuse("die '" + d.name + "' with shear friction");
+  }
+}
+
 Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Override>& overrides, Side side) {
   const std::string name = file.string();
   YAML::Node root;
@@ -757,6 +782,9 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     s.time.dwell = t.text("dwell", "auto", {"auto", "off"});
     s.time.output_interval = t.number("output_interval", s.time.end / 10, {0, 1e6, true, false});
     s.time.mass_scaling_dt = t.number("mass_scaling_dt", 0.0, {0, 1});
+    s.time.subcycling = t.integer("subcycling", 1, 1, 16);
+    if (s.time.subcycling & (s.time.subcycling - 1))
+      throw Error(t.where_of("subcycling") + ": must be 1, 2, 4, 8 or 16 (the largest ratio of a particle's step to the smallest)");
     t.done();
     for (const Die& d : s.dies)  // past bottom dead centre a crank press's ram rises off the part
       if (d.motion.cranked() && s.time.end > d.motion.crank.bottom_dead_centre() * (1 + 1e-12)) {
@@ -814,6 +842,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     h.done();
   }
   top.done();
+  check_subcycling(s);
 
   YAML::Emitter all;
   all << resolved;

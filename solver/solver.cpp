@@ -38,6 +38,7 @@
 #include "run_summary.hpp"
 #include "state.hpp"
 #include "step_limits.hpp"
+#include "subcycles.hpp"
 #include "stage.hpp"
 #include "subdomain.hpp"
 #include "thermal/heat_transfer.hpp"
@@ -65,6 +66,7 @@ class Simulation {
   bool checkpoint_clock() const;
   void checkpoint();
   [[noreturn]] void stop_on_interrupt();
+  void subcycle();
   void deformation_gradient();
   void stress_update();
   void contact();
@@ -74,7 +76,7 @@ class Simulation {
   bool heat_due(double dt, bool last) const;
   void heat_transfer();
   void internal_force();
-  void velocity_update(double dt_avg);
+  void velocity_update(double dt, double dt_avg);
   void press(double dt_avg);
   void constraints(double dt, double dt_avg);
   void boundary_work(double dt_avg);
@@ -109,6 +111,16 @@ class Simulation {
   std::unique_ptr<PointTracks> tracks_;
   std::unique_ptr<HealthChecks> health_;
   std::unique_ptr<HighestFrequency> frequency_;  // with time.stable_step = frequency only
+  // with time.subcycling > 1 only: the classes, this step's (sync_: every point and particle due, the
+  // cycle's first step), the cells' steps at its start and the cycle's dt; the contact's forces apart
+  // (they act at every step), and each particle's dt_avg this step (0: not due)
+  std::unique_ptr<Subcycles> subcycles_;
+  bool sync_ = true;
+  int level_ = 0;
+  std::vector<double> cell_dt_;
+  double cycle_dt_ = 0;
+  std::vector<Fixed> contact_partial_;
+  std::vector<double> contact_force_, particle_dt_avg_;
   std::unique_ptr<Progress> progress_;
   std::optional<OverlapExchange> exchange_;
   WriteLastFrame last_frame_;
@@ -129,6 +141,7 @@ class Simulation {
   bool healthy_ = true;
   StepLimits limits_;  // the last step's: they decide the next step's reference update, checkpoint, stop
   double last_checkpoint_wall_ = 0;
+  std::int64_t last_checkpoint_step_ = 0;
   double plastic_updates_ = 0, point_updates_ = 0;  // this run's stress updates, and those that were plastic
   double max_ebc_error_ = 0;
   std::vector<std::string> start_warnings_;  // found at the start, also in solve.json
@@ -141,9 +154,10 @@ void Simulation::run() {
     timer_.start();
     // the end within 1e-12 of it (the round-off of the summed steps), or every ram at rest
     const bool last = st_.t >= scene_.time.end * (1 - 1e-12) || (presses_ && presses_->stopped(st_));
+    subcycle();                                 // with multi-rate steps: whether a cycle starts, the classes due
     if (update_due()) reference_update();       // the current configuration becomes the reference
     if (checkpoint_due(last)) checkpoint();     // t^n, v^{n-1/2}
-    if (limits_.interrupted) stop_on_interrupt();  // a rank was interrupted: every rank stops here
+    if (limits_.interrupted && sync_) stop_on_interrupt();  // a rank was interrupted: every rank stops here
     deformation_gradient();                     // F = I + sum_I d_I (x) grad_X N_I at the points
     stress_update();                            // bulk viscosity, J2 return map with F-bar, P = tau F^-T
     contact();                                  // the dies', walls' and symmetry planes' forces
@@ -153,7 +167,7 @@ void Simulation::run() {
     const double dt_avg = st_.step == 0 ? 0.5 * dt : 0.5 * (st_.dt_half + dt);
     if (heat_due(dt, last)) heat_transfer();    // conduction and surface heat from the last update to t^n
     internal_force();                           // f = sum_g w_g P_g grad_X N_I - f_contact, overlap summed
-    velocity_update(dt_avg);                    // v^{n+1/2} = v^{n-1/2} + dt_avg (g - f / m)
+    velocity_update(dt, dt_avg);                // v^{n+1/2} = v^{n-1/2} + dt_avg (g - f / m)
     if (presses_) press(dt_avg);                // the rams' v^{n+1/2} from the part's reaction
     constraints(dt, dt_avg);                    // the essential BCs at t^{n+1}
     boundary_work(dt_avg);                      // the contact's and the body force's work over the step
@@ -208,7 +222,7 @@ void Simulation::warn_if_moving(const Comm& comm) {
 
 bool Simulation::update_due() const {
   const double strain = scene_.reference_updates.strain;
-  return strain > 0 && limits_.strain_since_update > strain;
+  return sync_ && strain > 0 && limits_.strain_since_update > strain;
 }
 
 void Simulation::reference_update() {
@@ -223,12 +237,15 @@ void Simulation::reference_update() {
 
 bool Simulation::checkpoint_due(bool last) const {
   const auto every = scene_.output.checkpoint_steps;
-  return (every > 0 && st_.step % every == 0 && st_.step > first_step_) || last || limits_.checkpoint_clock ||
+  if (!sync_) return false;  // (multi-rate steps: a due checkpoint waits for the cycle's end)
+  const bool steps = every > 0 && (subcycles_ ? st_.step / every > last_checkpoint_step_ / every : st_.step % every == 0);
+  return (steps && st_.step > first_step_) || last || limits_.checkpoint_clock ||
          limits_.interrupted;  // a stop writes a checkpoint first
 }
 
 void Simulation::checkpoint() {
   last_checkpoint_wall_ = comm_.wtime();
+  last_checkpoint_step_ = st_.step;
   clock_.frames = results_->frames();
   collectively(comm_, [&] { return write_checkpoint(opt_.case_dir, md_, st_, clock_, *dies_), 0; });
   timer_.stop(kCheckpoint);
@@ -245,16 +262,26 @@ void Simulation::stop_on_interrupt() {
   throw Error(why.str());
 }
 
+// Multi-rate steps (subcycles.hpp): a cycle starts when the last one has run its course; otherwise
+// the classes due at this step's offset in it.
+void Simulation::subcycle() {
+  if (!subcycles_) return;
+  sync_ = subcycles_->starts(st_.step);
+  if (!sync_) level_ = subcycles_->level(st_.step);
+}
+
 void Simulation::deformation_gradient() {
-  compute_deformation_gradient(md_, st_);
+  if (sync_) compute_deformation_gradient(md_, st_);
+  else compute_deformation_gradient(md_, st_, subcycles_->cells(level_));
   timer_.stop(kDeformationGradient);
 }
 
 void Simulation::stress_update() {
   update_bulk_viscosity(md_, st_, scene_.bulk_viscosity);
-  stress_ = update_stress(md_, st_, pressure_bound_);
+  const std::span<const std::int32_t> due = sync_ ? std::span<const std::int32_t>{} : subcycles_->cells(level_);
+  stress_ = update_stress(md_, st_, pressure_bound_, due);
   plastic_updates_ += double(stress_.plastic);
-  point_updates_ += double(md_.m);
+  point_updates_ += sync_ ? double(md_.m) : double(subcycles_->boundary_points(level_).size() + subcycles_->interior_points(level_).size());
   timer_.stop(kStressUpdate);
 }
 
@@ -272,7 +299,8 @@ void Simulation::time_step() {
   double bound = contact_bound_;
   for (std::size_t g = 0; g < md_.m; ++g) bound = std::max(bound, st_.force_bound[g]);
   healthy_ = stress_.ok && std::isfinite(bound);
-  stable_ = stable_time_step(md_, st_, scene_.time.cfl, true, stable_.cell);
+  if (subcycles_ && sync_) stable_ = cell_time_steps(md_, st_, scene_.time.cfl, cell_dt_);  // each cell's, for the classes
+  else if (!subcycles_) stable_ = stable_time_step(md_, st_, scene_.time.cfl, true, stable_.cell);
   if (frequency_) stable_.dt *= frequency_->step_ratio(md_, st_, comm_);  // the same on every rank
   const double update_strain = scene_.reference_updates.strain;
   limits_.dt = stable_.dt;
@@ -306,11 +334,22 @@ double Simulation::step_size(bool last) {
   double dt = limits_.dt;
   clock_.dt_stable = dt;
   clock_.dt_penalty = clock_.dt_penalty > 0 ? std::min(clock_.dt_penalty, dt) : dt;
+  const double out_dt = scene_.time.output_interval;
   if (!last) {
-    const double out_dt = scene_.time.output_interval;
     dt = std::min(dt, scene_.time.end - st_.t);
     if (clock_.next_output - st_.t > 1e-9 * out_dt) dt = std::min(dt, clock_.next_output - st_.t);
   }
+  if (!subcycles_) return dt;
+  if (!sync_) return cycle_dt_;
+  // a cycle of 2^levels steps that ends on or before the end and the next output time (the one after
+  // this step's frame where one is due now); none where the step was shortened to land
+  const double next_output = clock_.next_output + (output_due(last) ? out_dt : 0.0);
+  const double horizon = std::min(scene_.time.end, next_output) - st_.t;
+  int levels = 0;
+  while (levels < subcycles_->max_levels() && !last && dt == limits_.dt && double(2 << levels) * dt <= horizon) ++levels;
+  subcycles_->plan(md_, cell_dt_, dt, levels, st_.step, *exchange_);
+  level_ = levels;
+  cycle_dt_ = dt;
   return dt;
 }
 
@@ -331,24 +370,42 @@ void Simulation::internal_force() {
   const int headroom = step_headroom(headroom_, force_terms_, limits_.force_bound, limits_.contact_bound);
   const FixedScale scale = FixedScale::for_bound(limits_.force_bound, headroom);
   clear_internal_force(st_);
-  add_internal_force(md_, st_, scale, md_.boundary_points);
+  const bool all = sync_ || !subcycles_;  // (multi-rate steps: the points due)
+  const std::span<const std::int32_t> boundary = all ? std::span<const std::int32_t>(md_.boundary_points) : subcycles_->boundary_points(level_);
+  const std::span<const std::int32_t> interior = all ? std::span<const std::int32_t>(md_.interior_points) : subcycles_->interior_points(level_);
+  add_internal_force(md_, st_, scale, boundary);
+  if (subcycles_) st_.partial.swap(contact_partial_), clear_internal_force(st_);  // the contact's own sums
   dies_->add_to(md_, st_, scale);  // die contact forces of the owned particles and points, once over all ranks
   parts_->add_to(md_, st_, scale);
+  if (subcycles_) st_.partial.swap(contact_partial_), exchange_->sum(contact_partial_), read_forces(contact_partial_, scale, contact_force_);
   timer_.stop(kInternalForce);
   exchange_->start(st_.partial);
   timer_.stop(kOverlapExchange);
-  add_internal_force(md_, st_, scale, md_.interior_points);
+  add_internal_force(md_, st_, scale, interior);
   timer_.stop(kInternalForce);
   exchange_->finish(st_.partial);
   read_forces(st_.partial, scale, st_.force);
   timer_.stop(kOverlapExchange);
 }
 
-void Simulation::velocity_update(double dt_avg) {
+void Simulation::velocity_update(double dt, double dt_avg) {
   std::copy(st_.v.begin(), st_.v.end(), v_old_.begin());
   const double* g = scene_.loads.gravity.data();
-  for (std::size_t I = 0; I < md_.n; ++I)
-    for (int i = 0; i < 3; ++i) st_.v[3 * I + i] += dt_avg * (g[i] - st_.force[3 * I + i] / md_.mass[I]);
+  if (!subcycles_) {
+    for (std::size_t I = 0; I < md_.n; ++I)
+      for (int i = 0; i < 3; ++i) st_.v[3 * I + i] += dt_avg * (g[i] - st_.force[3 * I + i] / md_.mass[I]);
+  } else {  // the contact at every step; the internal force and the body force over a due particle's own step
+    for (std::size_t I = 0; I < md_.n; ++I) {
+      for (int i = 0; i < 3; ++i) st_.v[3 * I + i] -= dt_avg * contact_force_[3 * I + i] / md_.mass[I];
+      const int k = subcycles_->particle_class(I);
+      particle_dt_avg_[I] = 0;
+      if (!sync_ && k > level_) continue;
+      const double span = double(1 << k) * dt, own = 0.5 * (st_.particle_dt_half[I] + span);
+      for (int i = 0; i < 3; ++i) st_.v[3 * I + i] += own * (g[i] - st_.force[3 * I + i] / md_.mass[I]);
+      st_.particle_dt_half[I] = span;
+      particle_dt_avg_[I] = own;
+    }
+  }
   timer_.stop(kVelocityUpdate);
 }
 
@@ -371,14 +428,14 @@ void Simulation::boundary_work(double dt_avg) {
     for (std::size_t I = 0; I < md_.n; ++I)
       if (md_.owned[I])
         for (int i = 0; i < 3; ++i)
-          st_.external_work += dt_avg * md_.mass[I] * g[i] * 0.5 * (v_old_[3 * I + i] + st_.v[3 * I + i]);
+          st_.external_work += (subcycles_ ? particle_dt_avg_[I] : dt_avg) * md_.mass[I] * g[i] * 0.5 * (v_old_[3 * I + i] + st_.v[3 * I + i]);
   timer_.stop(kBoundaryWork);
 }
 
 // A row every 1/500 of the run (io/history.hpp), due within 1e-9 of that: the clock's round-off.
 bool Simulation::history_due(bool last) const {
   const double hist_dt = (scene_.time.end - t0_) / 500;
-  return last || st_.t >= clock_.next_history - 1e-9 * hist_dt;
+  return last || (sync_ && st_.t >= clock_.next_history - 1e-9 * hist_dt);
 }
 
 void Simulation::history(double dt, bool last) {
@@ -404,7 +461,7 @@ void Simulation::history(double dt, bool last) {
 
 // Due within 1e-9 of the interval, as history_due.
 bool Simulation::output_due(bool last) const {
-  return last || st_.t >= clock_.next_output - 1e-9 * scene_.time.output_interval;
+  return last || (sync_ && st_.t >= clock_.next_output - 1e-9 * scene_.time.output_interval);
 }
 
 void Simulation::output() {
@@ -474,6 +531,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     if (md_.body[I] > 0)
       for (int i = 0; i < 3; ++i) st_.v[3 * I + i] = scene_.bodies[md_.body[I] - 1u].velocity[i];
   init_bulk_viscosity(md_, st_, scene_.bulk_viscosity);
+  if (scene_.time.subcycling > 1) st_.particle_dt_half.assign(md_.n, 0.0);  // (or the checkpoint's)
   if (scene_.material.thermal()) {  // by the points' positions at t = 0
     st_.temperature.resize(md_.m);
     for (std::size_t g = 0; g < md_.m; ++g) st_.temperature[g] = scene_.initial.temperature_at(&md_.point_X[3 * g]);
@@ -558,6 +616,13 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   first_step_ = st_.step;
   const int die_count = int(md_.dies.size());
   exchange_.emplace(md_, int(kForceStride));
+  if (scene_.time.subcycling > 1) {
+    subcycles_ = std::make_unique<Subcycles>(md_, scene_.time.subcycling);
+    contact_partial_.assign(st_.partial.size(), 0);
+    contact_force_.assign(3 * md_.n, 0.0);
+    particle_dt_avg_.assign(md_.n, 0.0);
+  }
+  last_checkpoint_step_ = st_.step;
   headroom_ = force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm);
   force_terms_ = force_terms(md_, *dies_, *parts_, comm);
   v_old_.assign(st_.v.size(), 0.0);

@@ -16,6 +16,9 @@ struct State {
   double t = 0;
   std::int64_t step = 0;
   double dt_half = 0;  // dt^{n-1/2}, the step that led to the current positions
+  // with multi-rate steps (subcycles.hpp; empty otherwise): each particle's own last step, the span of
+  // its velocity v^{n-1/2}
+  std::vector<double> particle_dt_half;
 
   // particles (3 per particle)
   std::vector<double> u, v, force;  // displacement d_I, velocity, net internal force f^int_I

@@ -35,12 +35,21 @@ double gershgorin_floor(const double F[9]) {
   return std::min({c(0, 0) - xy - zx, c(1, 1) - xy - yz, c(2, 2) - yz - zx});
 }
 
+namespace {
+
+// dt of cell c's points = this * their smallest stretch (with bulk viscosity, times the point's factor)
+double cell_scale(const Model& md, const State& st, std::size_t c) {
+  const double c2 = md.material_of_cell(c).wave_speed2(st.cell_J[c]);
+  return md.cell_h0[c] / std::sqrt(c2);
+}
+
+}  // namespace
+
 StableStep stable_time_step(const Model& md, const State& st, double cfl, bool damped, std::size_t first) {
   double dt = std::numeric_limits<double>::infinity();
   std::size_t which = 0;
   auto visit = [&](std::size_t c) {
-    const double c2 = md.material_of_cell(c).wave_speed2(st.cell_J[c]);
-    const double scale0 = md.cell_h0[c] / std::sqrt(c2);  // dt of the cell = scale * stretch
+    const double scale0 = cell_scale(md, st, c);
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
       const double* F = &st.F[9 * std::size_t(g)];
       const double scale = st.dt_factor.empty() || !damped ? scale0 : scale0 * st.dt_factor[std::size_t(g)];  // bulk viscosity
@@ -62,6 +71,20 @@ StableStep stable_time_step(const Model& md, const State& st, double cfl, bool d
   for (std::size_t c = 0; c < md.cells; ++c)
     if (c != first) visit(c);
   return {cfl * dt, which};
+}
+
+StableStep cell_time_steps(const Model& md, const State& st, double cfl, std::vector<double>& dt_cell) {
+  dt_cell.assign(md.cells, std::numeric_limits<double>::infinity());
+  StableStep least{std::numeric_limits<double>::infinity(), 0};
+  for (std::size_t c = 0; c < md.cells; ++c) {
+    const double scale0 = cell_scale(md, st, c);
+    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
+      const double scale = st.dt_factor.empty() ? scale0 : scale0 * st.dt_factor[std::size_t(g)];
+      dt_cell[c] = std::min(dt_cell[c], cfl * scale * smallest_stretch(&st.F[9 * std::size_t(g)], st.J[g]));
+    }
+    if (dt_cell[c] < least.dt) least = {dt_cell[c], c};
+  }
+  return least;
 }
 
 }  // namespace rk

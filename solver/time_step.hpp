@@ -9,6 +9,8 @@
 // with bulk viscosity each point's term shrinks by its factor (material/bulk_viscosity.hpp).
 // Why: docs/decisions.md, "Stable time step from the deformation at the integration points".
 #pragma once
+#include <vector>
+
 #include "model.hpp"
 #include "state.hpp"
 
@@ -23,6 +25,11 @@ struct StableStep {
 // cell to measure first (the last step's; the same step whatever it is, only sooner).
 StableStep stable_time_step(const Model& md, const State& st, double cfl, bool damped = true,
                             std::size_t first = std::size_t(-1));
+
+// Every cell's own stable step, CFL times the least over its points (none skipped; with bulk viscosity's
+// factors), into dt_cell (resized to the cells); returns the least, as stable_time_step would. For the
+// classes of multi-rate steps (subcycles.hpp).
+StableStep cell_time_steps(const Model& md, const State& st, double cfl, std::vector<double>& dt_cell);
 
 // Smallest principal stretch of F: sqrt of the smallest eigenvalue of C = F^T F (closed form);
 // det F as the kinematics computed it (State::J).

@@ -121,7 +121,7 @@ std::size_t batch_end(const Model& md, std::size_t g0) {
 
 }  // namespace
 
-StressHealth update_stress(const Model& md, State& st, const PressureBound& bound) {
+StressHealth update_stress(const Model& md, State& st, const PressureBound& bound, std::span<const std::int32_t> cells) {
   StressHealth health;
   double thermal_work = 0;
   double floor = std::numeric_limits<double>::infinity();
@@ -132,7 +132,10 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
   Mat F_batch[std::size(batch)];
   // F-bar couples the points of a cell; without it (volumetric: none, nodal integration) the points
   // go kLanes at a time whatever their cells, of one material each batch
-  for (std::size_t c = 0, g0 = 0, g1 = 0; md.fbar ? c < md.cells : g1 < md.m; ++c, g0 = g1) {
+  const bool listed = !cells.empty();  // (F-bar only: a list is of cells)
+  const std::size_t count = listed ? cells.size() : md.cells;
+  for (std::size_t i = 0, c = 0, g0 = 0, g1 = 0; md.fbar ? i < count : g1 < md.m; ++i, g0 = g1) {
+    c = listed ? std::size_t(cells[i]) : i;
     if (md.fbar) g0 = std::size_t(md.cell_points[c]), g1 = std::size_t(md.cell_points[c + 1]);
     else g1 = batch_end(md, g0);
     if (g0 == g1) continue;

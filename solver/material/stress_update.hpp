@@ -8,6 +8,8 @@
 // The points of a cell go through the material update kLanes at a time (material/lanes.hpp); without
 // F-bar (volumetric: none, one point per cell, nodal integration) kLanes consecutive points at a time.
 #pragma once
+#include <span>
+
 #include "model.hpp"
 #include "state.hpp"
 
@@ -41,7 +43,8 @@ struct StressHealth {
   bool pressure_stop = false;  // not ok because a pressure passed the bound (point, pressure say where)
 };
 
-StressHealth update_stress(const Model& md, State& st, const PressureBound& bound);
+// `cells`: with F-bar, the listed cells only (multi-rate steps: the cells due this step); empty: all points.
+StressHealth update_stress(const Model& md, State& st, const PressureBound& bound, std::span<const std::int32_t> cells = {});
 
 // v_max: the largest of the initial speed over the part's box [lo, hi] and the speeds of the dies
 // and prescribed faces (PressureBound::impact is rho c_L v_max).

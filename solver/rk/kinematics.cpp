@@ -7,34 +7,46 @@ namespace {
 
 // F_g's columns F_.j = e_j + sum_I (d_I - d_I^ref) dN_I/dX_j: per term one load of the padded
 // displacement and three multiply-adds by the gradient's components
-void gather_gradients(const Model& md, State& st) {
+inline void gather_point(const Model& md, State& st, std::size_t g) {
   const double* d = st.d_gather.data();
   const double* dN = md.dN.data();
-  for (std::size_t g = 0; g < md.m; ++g) {
-    Row3 column[3] = {make_row3(1, 0, 0), make_row3(0, 1, 0), make_row3(0, 0, 1)};
-    const std::int64_t k1 = md.nbr_offsets[g + 1];
-    for (auto k = md.nbr_offsets[g]; k < k1; ++k) {
-      const Row3 dI = load_row4(&d[4 * std::size_t(md.nbr[k])]);
-      for (int j = 0; j < 3; ++j) column[j] += dN[3 * std::size_t(k) + j] * dI;
-    }
-    double* F = &st.F[9 * g];
-    for (int i = 0; i < 9; ++i) F[i] = column[i % 3][i / 3];
-    st.J[g] = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) + F[2] * (F[3] * F[7] - F[4] * F[6]);
+  Row3 column[3] = {make_row3(1, 0, 0), make_row3(0, 1, 0), make_row3(0, 0, 1)};
+  const std::int64_t k1 = md.nbr_offsets[g + 1];
+  for (auto k = md.nbr_offsets[g]; k < k1; ++k) {
+    const Row3 dI = load_row4(&d[4 * std::size_t(md.nbr[k])]);
+    for (int j = 0; j < 3; ++j) column[j] += dN[3 * std::size_t(k) + j] * dI;
   }
+  double* F = &st.F[9 * g];
+  for (int i = 0; i < 9; ++i) F[i] = column[i % 3][i / 3];
+  st.J[g] = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) + F[2] * (F[3] * F[7] - F[4] * F[6]);
+}
+
+void copy_displacements(const Model& md, State& st) {
+  if (st.d_gather.size() != 4 * md.n) st.d_gather.assign(4 * md.n, 0.0);  // (at the start and a reference update)
+  const bool updated = !st.u_ref.empty();
+  for (std::size_t I = 0; I < md.n; ++I)
+    for (int i = 0; i < 3; ++i) st.d_gather[4 * I + i] = updated ? st.u[3 * I + i] - st.u_ref[3 * I + i] : st.u[3 * I + i];
+}
+
+void cell_average(const Model& md, State& st, std::size_t c) {
+  double wJ = 0, w = 0;
+  for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) wJ += md.weight[g] * st.J[g], w += md.weight[g];
+  st.cell_J[c] = w > 0 ? wJ / w : 1.0;  // (nodal integration leaves cells without points)
 }
 
 }  // namespace
 
 void compute_deformation_gradient(const Model& md, State& st) {
-  if (st.d_gather.size() != 4 * md.n) st.d_gather.assign(4 * md.n, 0.0);  // (at the start and a reference update)
-  const bool updated = !st.u_ref.empty();
-  for (std::size_t I = 0; I < md.n; ++I)
-    for (int i = 0; i < 3; ++i) st.d_gather[4 * I + i] = updated ? st.u[3 * I + i] - st.u_ref[3 * I + i] : st.u[3 * I + i];
-  gather_gradients(md, st);
-  for (std::size_t c = 0; c < md.cells; ++c) {
-    double wJ = 0, w = 0;
-    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) wJ += md.weight[g] * st.J[g], w += md.weight[g];
-    st.cell_J[c] = w > 0 ? wJ / w : 1.0;  // (nodal integration leaves cells without points)
+  copy_displacements(md, st);
+  for (std::size_t g = 0; g < md.m; ++g) gather_point(md, st, g);
+  for (std::size_t c = 0; c < md.cells; ++c) cell_average(md, st, c);
+}
+
+void compute_deformation_gradient(const Model& md, State& st, std::span<const std::int32_t> cells) {
+  copy_displacements(md, st);
+  for (const std::int32_t c : cells) {
+    for (auto g = md.cell_points[std::size_t(c)]; g < md.cell_points[std::size_t(c) + 1]; ++g) gather_point(md, st, std::size_t(g));
+    cell_average(md, st, std::size_t(c));
   }
 }
 

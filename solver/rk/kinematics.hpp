@@ -2,12 +2,16 @@
 // and the F-bar cell average of det F. After a reference update (rk/reference_update.hpp) the same
 // gather on the displacement since the update, d_I - d_I^ref, with the shapes of the new reference.
 #pragma once
+#include <span>
+
 #include "model.hpp"
 #include "state.hpp"
 
 namespace rk {
 
 void compute_deformation_gradient(const Model& md, State& st);
+// The same at the points of the listed cells only (multi-rate steps: the cells due this step).
+void compute_deformation_gradient(const Model& md, State& st, std::span<const std::int32_t> cells);
 
 // Integration point g's current position X_g + u^h(X_g) (the material's, from the reference point
 // and the displacement since the last reference update, d_J - d_J^ref).

@@ -1,0 +1,77 @@
+#include "subcycles.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+
+#include "state.hpp"
+
+namespace rk {
+namespace {
+
+// entries sorted by their class (a counting sort, stable), and per level the end of those due
+void sort_by_class(std::span<const std::int32_t> entries, const auto& class_of, int levels, std::vector<std::int32_t>& out,
+                   std::vector<std::size_t>& end) {
+  end.assign(std::size_t(Subcycles::kMaxLevels) + 1, 0);
+  for (const std::int32_t e : entries) ++end[std::size_t(class_of(e))];
+  for (std::size_t k = 1; k < end.size(); ++k) end[k] += end[k - 1];
+  std::array<std::size_t, Subcycles::kMaxLevels + 1> next{};
+  for (std::size_t k = 1; k < end.size(); ++k) next[k] = end[k - 1];
+  out.resize(entries.size());
+  for (const std::int32_t e : entries) out[next[std::size_t(class_of(e))]++] = e;
+  for (auto k = std::size_t(levels) + 1; k < end.size(); ++k) end[k] = end[std::size_t(levels)];
+}
+
+}  // namespace
+
+Subcycles::Subcycles(const Model& md, int max_ratio)
+    : max_levels_(std::countr_zero(unsigned(max_ratio))), point_cell_(md.m, -1), particle_class_(md.n, 0),
+      cell_class_(md.cells, 0), counts_(kForceStride * md.n, 0), all_cells_(md.cells) {
+  for (std::size_t c = 0; c < md.cells; ++c) all_cells_[c] = std::int32_t(c);
+  for (std::size_t c = 0; c < md.cells; ++c)
+    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) point_cell_[std::size_t(g)] = std::int32_t(c);
+}
+
+void Subcycles::plan(const Model& md, const std::vector<double>& dt_cell, double dt, int levels, std::int64_t step,
+                     OverlapExchange& exchange) {
+  start_ = step;
+  levels_ = levels;
+  static_assert(kForceStride == kMaxLevels, "a particle's counts: one per class below the largest");
+  // each point counts its cell's limit class at every particle of its row; the least counted is the particle's
+  std::fill(counts_.begin(), counts_.end(), 0);
+  for (std::size_t c = 0; c < md.cells; ++c) {
+    int limit = 0;
+    while (limit < levels && double(2 << limit) * dt <= dt_cell[c]) ++limit;
+    if (limit == kMaxLevels) continue;
+    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g)
+      for (auto k = md.nbr_offsets[std::size_t(g)]; k < md.nbr_offsets[std::size_t(g) + 1]; ++k)
+        ++counts_[kForceStride * std::size_t(md.nbr[std::size_t(k)]) + std::size_t(limit)];
+  }
+  exchange.sum(counts_);
+  for (std::size_t I = 0; I < md.n; ++I) {
+    int k = 0;
+    while (k < levels && counts_[kForceStride * I + std::size_t(k)] == 0) ++k;
+    particle_class_[I] = std::int8_t(k);
+  }
+  double updates = 0;
+  for (std::size_t c = 0; c < md.cells; ++c) {
+    int k = levels;
+    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g)
+      for (auto j = md.nbr_offsets[std::size_t(g)]; j < md.nbr_offsets[std::size_t(g) + 1]; ++j)
+        k = std::min(k, int(particle_class_[std::size_t(md.nbr[std::size_t(j)])]));
+    cell_class_[c] = std::int8_t(k);
+    updates += double(md.cell_points[c + 1] - md.cell_points[c]) / double(1 << k);
+  }
+  update_share_ = md.m > 0 ? updates / double(md.m) : 1.0;
+  sort_by_class(all_cells_, [&](std::int32_t c) { return cell_class_[std::size_t(c)]; }, levels, cells_, cells_end_);
+  auto point_class = [&](std::int32_t g) { return cell_class_[std::size_t(point_cell_[std::size_t(g)])]; };
+  sort_by_class(md.boundary_points, point_class, levels, boundary_, boundary_end_);
+  sort_by_class(md.interior_points, point_class, levels, interior_, interior_end_);
+}
+
+int Subcycles::level(std::int64_t step) const {
+  const std::int64_t offset = step - start_;
+  return offset == 0 ? levels_ : std::min(levels_, std::countr_zero(std::uint64_t(offset)));
+}
+
+}  // namespace rk
