@@ -278,8 +278,7 @@ void Simulation::deformation_gradient() {
 
 void Simulation::stress_update() {
   update_bulk_viscosity(md_, st_, scene_.bulk_viscosity);
-  const std::span<const std::int32_t> due = sync_ ? std::span<const std::int32_t>{} : subcycles_->cells(level_);
-  stress_ = update_stress(md_, st_, pressure_bound_, due);
+  stress_ = sync_ ? update_stress(md_, st_, pressure_bound_) : update_stress(md_, st_, pressure_bound_, subcycles_->cells(level_));
   plastic_updates_ += double(stress_.plastic);
   point_updates_ += sync_ ? double(md_.m) : double(subcycles_->boundary_points(level_).size() + subcycles_->interior_points(level_).size());
   timer_.stop(kStressUpdate);

@@ -121,7 +121,11 @@ std::size_t batch_end(const Model& md, std::size_t g0) {
 
 }  // namespace
 
-StressHealth update_stress(const Model& md, State& st, const PressureBound& bound, std::span<const std::int32_t> cells) {
+namespace {
+
+// listed: the cells of `cells` only (F-bar), else every point
+StressHealth update_points(const Model& md, State& st, const PressureBound& bound, bool listed,
+                           std::span<const std::int32_t> cells) {
   StressHealth health;
   double thermal_work = 0;
   double floor = std::numeric_limits<double>::infinity();
@@ -132,7 +136,6 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
   Mat F_batch[std::size(batch)];
   // F-bar couples the points of a cell; without it (volumetric: none, nodal integration) the points
   // go kLanes at a time whatever their cells, of one material each batch
-  const bool listed = !cells.empty();  // (F-bar only: a list is of cells)
   const std::size_t count = listed ? cells.size() : md.cells;
   for (std::size_t i = 0, c = 0, g0 = 0, g1 = 0; md.fbar ? i < count : g1 < md.m; ++i, g0 = g1) {
     c = listed ? std::size_t(cells[i]) : i;
@@ -209,6 +212,16 @@ StressHealth update_stress(const Model& md, State& st, const PressureBound& boun
   }
   st.thermal_work += thermal_work;
   return health;
+}
+
+}  // namespace
+
+StressHealth update_stress(const Model& md, State& st, const PressureBound& bound) {
+  return update_points(md, st, bound, false, {});
+}
+
+StressHealth update_stress(const Model& md, State& st, const PressureBound& bound, std::span<const std::int32_t> cells) {
+  return update_points(md, st, bound, true, cells);
 }
 
 double fastest_speed(const Scene& scene, const double lo[3], const double hi[3]) {

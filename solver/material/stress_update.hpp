@@ -43,8 +43,9 @@ struct StressHealth {
   bool pressure_stop = false;  // not ok because a pressure passed the bound (point, pressure say where)
 };
 
-// `cells`: with F-bar, the listed cells only (multi-rate steps: the cells due this step); empty: all points.
-StressHealth update_stress(const Model& md, State& st, const PressureBound& bound, std::span<const std::int32_t> cells = {});
+StressHealth update_stress(const Model& md, State& st, const PressureBound& bound);
+// The same at the listed F-bar cells only (multi-rate steps: the cells due this step; none if empty).
+StressHealth update_stress(const Model& md, State& st, const PressureBound& bound, std::span<const std::int32_t> cells);
 
 // v_max: the largest of the initial speed over the part's box [lo, hi] and the speeds of the dies
 // and prescribed faces (PressureBound::impact is rho c_L v_max).

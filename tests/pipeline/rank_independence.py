@@ -2,7 +2,8 @@
 for a few hundred steps on 1, 2, 3 and 4 ranks (oversubscribed) gives, per global id, bitwise the
 same positions, velocities and plastic strain as on one rank. Each rank writes only its owned
 particles and rkpost merges every particle exactly once, with `rank` = its owner. Both EBC methods, and
-nodal integration (its smoothing-cell faces cross the partition)."""
+nodal integration (its smoothing-cell faces cross the partition), and multi-rate steps (the classes of the
+particles shared over the partition summed as counts)."""
 import json
 
 import meshio
@@ -14,12 +15,12 @@ tools = rkcase.tools_from_argv()
 sets = ["time.end=8e-6", "time.output_interval=4e-6"]
 
 
-def frames_of(method, prep_sets):
+def frames_of(method, prep_sets, solve_sets):
     frames = {}
     for ranks in (1, 2, 3, 4):
         case = tools.case(f"ranks_{ranks}_{method.replace(' ', '_')}")
         tools.prep(case, ranks, sets=["discretization.spacing=1.2e-3", *prep_sets])
-        tools.solve(case, ranks, sets=sets)
+        tools.solve(case, ranks, sets=sets + solve_sets)
         tools.post(case)
         steps = json.loads((case / "solve.json").read_text())["steps"]
         vtu = meshio.read(case / "vtk" / "frame_00002.vtu")
@@ -31,10 +32,11 @@ def frames_of(method, prep_sets):
     return frames
 
 
-for method, prep_sets in (("nodal", ["discretization.ebc_method=nodal"]),
-                          ("transformation", ["discretization.ebc_method=transformation"]),
-                          ("nodal integration", ["discretization.integration=nodal"])):
-    frames = frames_of(method, prep_sets)
+for method, prep_sets, solve_sets in (("nodal", ["discretization.ebc_method=nodal"], []),
+                                      ("transformation", ["discretization.ebc_method=transformation"], []),
+                                      ("nodal integration", ["discretization.integration=nodal"], []),
+                                      ("multi-rate steps", [], ["time.subcycling=16"])):
+    frames = frames_of(method, prep_sets, solve_sets)
     base = frames[1]
     rkcase.check(base["eq_plastic_strain"].max() > 0.1, f"{method}: the run is well into plastic flow")
     for ranks in (2, 3, 4):
