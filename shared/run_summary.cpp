@@ -12,7 +12,7 @@ namespace rk {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(PhaseTime, min_s, max_s)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(RunSummary, format, steps, time, wall_s, setup_s, ranks, particles,
                                                 integration_points, neighbours_per_point, point_updates_per_s,
-                                                ns_per_point_update, ns_per_particle_step, plastic_fraction, energy_error, max_energy_error,
+                                                ns_per_point_update, ns_per_particle_step, point_update_share, plastic_fraction, energy_error, max_energy_error,
                                                 max_pressure_ratio, impact_pressure_pa, ebc_method, constraints,
                                                 max_ebc_error_m, initial_kinetic_energy, viscous_work, mass_scaling, stable_step, step_ratio,
                                                 max_kinetic_internal_ratio, reference_updates, frames, thermal_updates, thermal_step_s,

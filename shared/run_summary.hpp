@@ -29,6 +29,8 @@ struct RunSummary {
   double point_updates_per_s = 0;
   double ns_per_point_update = 0;   // the figure of merit: loop wall time x ranks / (points x steps)
   double ns_per_particle_step = 0;  // loop wall time x ranks / (particles x steps): other meshfree codes' figure
+  // the points updated per step over all points (1; below with multi-rate steps: time.subcycling)
+  double point_update_share = 1;
   double plastic_fraction = 0;      // of the stress updates
   double energy_error = 0;          // at the end
   double max_energy_error = 0;      // the largest of the run (past its start-up)

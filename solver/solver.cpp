@@ -298,8 +298,9 @@ void Simulation::time_step() {
   double bound = contact_bound_;
   for (std::size_t g = 0; g < md_.m; ++g) bound = std::max(bound, st_.force_bound[g]);
   healthy_ = stress_.ok && std::isfinite(bound);
-  if (subcycles_ && sync_) stable_ = cell_time_steps(md_, st_, scene_.time.cfl, cell_dt_);  // each cell's, for the classes
-  else if (!subcycles_) stable_ = stable_time_step(md_, st_, scene_.time.cfl, true, stable_.cell);
+  if (sync_) stable_ = stable_time_step(md_, st_, scene_.time.cfl, true, stable_.cell);
+  if (subcycles_ && sync_)  // each cell's, for the classes (a cycle holds the step of its start)
+    cell_time_steps(md_, st_, scene_.time.cfl, double(1 << subcycles_->max_levels()) * stable_.dt, cell_dt_);
   if (frequency_) stable_.dt *= frequency_->step_ratio(md_, st_, comm_);  // the same on every rank
   const double update_strain = scene_.reference_updates.strain;
   limits_.dt = stable_.dt;

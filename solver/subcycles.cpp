@@ -30,6 +30,18 @@ Subcycles::Subcycles(const Model& md, int max_ratio)
   for (std::size_t c = 0; c < md.cells; ++c) all_cells_[c] = std::int32_t(c);
   for (std::size_t c = 0; c < md.cells; ++c)
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) point_cell_[std::size_t(g)] = std::int32_t(c);
+  // each cell's particles: the union of its points' rows, each once (the points share most of them)
+  std::vector<std::int32_t> seen(md.n, -1);
+  support_offsets_.assign(md.cells + 1, 0);
+  for (std::size_t c = 0; c < md.cells; ++c) {
+    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g)
+      for (auto k = md.nbr_offsets[std::size_t(g)]; k < md.nbr_offsets[std::size_t(g) + 1]; ++k)
+        if (const std::int32_t I = md.nbr[std::size_t(k)]; seen[std::size_t(I)] != std::int32_t(c)) {
+          seen[std::size_t(I)] = std::int32_t(c);
+          support_.push_back(I);
+        }
+    support_offsets_[c + 1] = std::int64_t(support_.size());
+  }
 }
 
 void Subcycles::plan(const Model& md, const std::vector<double>& dt_cell, double dt, int levels, std::int64_t step,
@@ -37,15 +49,14 @@ void Subcycles::plan(const Model& md, const std::vector<double>& dt_cell, double
   start_ = step;
   levels_ = levels;
   static_assert(kForceStride == kMaxLevels, "a particle's counts: one per class below the largest");
-  // each point counts its cell's limit class at every particle of its row; the least counted is the particle's
+  // each cell counts its limit class at every particle of its points' rows; the least counted is the particle's
   std::fill(counts_.begin(), counts_.end(), 0);
   for (std::size_t c = 0; c < md.cells; ++c) {
     int limit = 0;
     while (limit < levels && double(2 << limit) * dt <= dt_cell[c]) ++limit;
     if (limit == kMaxLevels) continue;
-    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g)
-      for (auto k = md.nbr_offsets[std::size_t(g)]; k < md.nbr_offsets[std::size_t(g) + 1]; ++k)
-        ++counts_[kForceStride * std::size_t(md.nbr[std::size_t(k)]) + std::size_t(limit)];
+    for (auto k = support_offsets_[c]; k < support_offsets_[c + 1]; ++k)
+      ++counts_[kForceStride * std::size_t(support_[std::size_t(k)]) + std::size_t(limit)];
   }
   exchange.sum(counts_);
   for (std::size_t I = 0; I < md.n; ++I) {
@@ -56,9 +67,8 @@ void Subcycles::plan(const Model& md, const std::vector<double>& dt_cell, double
   double updates = 0;
   for (std::size_t c = 0; c < md.cells; ++c) {
     int k = levels;
-    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g)
-      for (auto j = md.nbr_offsets[std::size_t(g)]; j < md.nbr_offsets[std::size_t(g) + 1]; ++j)
-        k = std::min(k, int(particle_class_[std::size_t(md.nbr[std::size_t(j)])]));
+    for (auto j = support_offsets_[c]; j < support_offsets_[c + 1]; ++j)
+      k = std::min(k, int(particle_class_[std::size_t(support_[std::size_t(j)])]));
     cell_class_[c] = std::int8_t(k);
     updates += double(md.cell_points[c + 1] - md.cell_points[c]) / double(1 << k);
   }

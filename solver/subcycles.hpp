@@ -56,6 +56,8 @@ class Subcycles {
   std::int64_t start_ = -1;
   int levels_ = 0;
   std::vector<std::int32_t> point_cell_;
+  std::vector<std::int64_t> support_offsets_;  // cell c's particles: support_[support_offsets_[c] ..)
+  std::vector<std::int32_t> support_;
   std::vector<std::int8_t> particle_class_, cell_class_;
   std::vector<std::int64_t> counts_;  // the classes' counts per particle (kForceStride), summed over ranks
   std::vector<std::int32_t> all_cells_;

@@ -26,10 +26,10 @@ struct StableStep {
 StableStep stable_time_step(const Model& md, const State& st, double cfl, bool damped = true,
                             std::size_t first = std::size_t(-1));
 
-// Every cell's own stable step, CFL times the least over its points (none skipped; with bulk viscosity's
-// factors), into dt_cell (resized to the cells); returns the least, as stable_time_step would. For the
-// classes of multi-rate steps (subcycles.hpp).
-StableStep cell_time_steps(const Model& md, const State& st, double cfl, std::vector<double>& dt_cell);
+// Every cell's own stable step, CFL times the least over its points (with bulk viscosity's factors), into
+// dt_cell (resized to the cells), for the classes of multi-rate steps (subcycles.hpp): exact below
+// `enough`, and at or above it where a cheap lower bound already is.
+void cell_time_steps(const Model& md, const State& st, double cfl, double enough, std::vector<double>& dt_cell);
 
 // Smallest principal stretch of F: sqrt of the smallest eigenvalue of C = F^T F (closed form);
 // det F as the kinematics computed it (State::J).
