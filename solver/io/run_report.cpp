@@ -106,7 +106,7 @@ RunSummary summarize(const Scene& scene, const Model& md, const State& st, const
   s.point_updates_per_s = loop_s > 0 ? points * steps / loop_s : 0.0;
   s.ns_per_point_update = steps > 0 ? 1e9 * loop_s * comm.size() / (points * steps) : 0.0;
   s.ns_per_particle_step = steps > 0 ? 1e9 * loop_s * comm.size() / (particles * steps) : 0.0;
-  s.point_update_share = steps > 0 ? updates / (points * steps) : 1.0;
+  s.point_update_share = updates / std::max(points * (steps + 1), 1.0);  // (the last step updates the stress too)
   s.plastic_fraction = plastic / std::max(updates, 1.0);
   s.energy_error = clock.last_error;
   s.max_energy_error = clock.max_error;
