@@ -252,9 +252,8 @@ void Simulation::checkpoint() {
 }
 
 void Simulation::stop_on_interrupt() {
-  compute_deformation_gradient(md_, st_);  // the frame's stresses are this state's (t^n)
-  update_bulk_viscosity(md_, st_, scene_.bulk_viscosity);
-  update_stress(md_, st_, pressure_bound_);
+  deformation_gradient();  // the frame's stresses are this state's (t^n)
+  stress_update();
   write_frame(st_.v);
   std::ostringstream why;
   why << "interrupted at step " << st_.step << ", t = " << st_.t << " s: checkpoint and last frame written; `rksolve "
@@ -277,10 +276,21 @@ void Simulation::deformation_gradient() {
 }
 
 void Simulation::stress_update() {
-  update_bulk_viscosity(md_, st_, scene_.bulk_viscosity);
-  stress_ = sync_ ? update_stress(md_, st_, pressure_bound_) : update_stress(md_, st_, pressure_bound_, subcycles_->cells(level_));
+  if (!subcycles_) {
+    update_bulk_viscosity(md_, st_, scene_.bulk_viscosity);
+    stress_ = update_stress(md_, st_, pressure_bound_);
+    point_updates_ += double(md_.m);
+  } else {  // the cells due, each over its own increment since its last update
+    const std::span<const std::int32_t> due = sync_ ? subcycles_->all_cells() : subcycles_->cells(level_);
+    for (const std::int32_t c : due) {
+      st_.cell_dt_half[std::size_t(c)] = st_.t - st_.cell_t_last[std::size_t(c)];
+      st_.cell_t_last[std::size_t(c)] = st_.t;
+    }
+    update_bulk_viscosity(md_, st_, scene_.bulk_viscosity, due);
+    stress_ = update_stress(md_, st_, pressure_bound_, due);
+    point_updates_ += sync_ ? double(md_.m) : double(subcycles_->boundary_points(level_).size() + subcycles_->interior_points(level_).size());
+  }
   plastic_updates_ += double(stress_.plastic);
-  point_updates_ += sync_ ? double(md_.m) : double(subcycles_->boundary_points(level_).size() + subcycles_->interior_points(level_).size());
   timer_.stop(kStressUpdate);
 }
 
@@ -531,7 +541,8 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     if (md_.body[I] > 0)
       for (int i = 0; i < 3; ++i) st_.v[3 * I + i] = scene_.bodies[md_.body[I] - 1u].velocity[i];
   init_bulk_viscosity(md_, st_, scene_.bulk_viscosity);
-  if (scene_.time.subcycling > 1) st_.particle_dt_half.assign(md_.n, 0.0);  // (or the checkpoint's)
+  if (scene_.time.subcycling > 1)  // (or the checkpoint's)
+    st_.particle_dt_half.assign(md_.n, 0.0), st_.cell_t_last.assign(md_.cells, 0.0), st_.cell_dt_half.assign(md_.cells, 0.0);
   if (scene_.material.thermal()) {  // by the points' positions at t = 0
     st_.temperature.resize(md_.m);
     for (std::size_t g = 0; g < md_.m; ++g) st_.temperature[g] = scene_.initial.temperature_at(&md_.point_X[3 * g]);

@@ -43,6 +43,7 @@ class Subcycles {
 
   // The classes due at `step` (a particle or cell is due when its class is at most this).
   int level(std::int64_t step) const;
+  std::span<const std::int32_t> all_cells() const { return all_cells_; }
   // The due cells and points at `level`, in class order.
   std::span<const std::int32_t> cells(int level) const { return {cells_.data(), cells_end_[std::size_t(level)]}; }
   std::span<const std::int32_t> boundary_points(int level) const { return {boundary_.data(), boundary_end_[std::size_t(level)]}; }

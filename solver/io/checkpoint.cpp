@@ -59,7 +59,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
       f.write("points/J_last", st.J_last);
     }
     if (!st.temperature.empty()) f.write("points/temperature", st.temperature);
-    if (!st.particle_dt_half.empty()) f.write("particles/dt_half", st.particle_dt_half);
+    if (!st.particle_dt_half.empty()) f.write("particles/dt_half", st.particle_dt_half), f.write("cells/t_last", st.cell_t_last);
     if (!st.stiff_mode.empty()) {  // time.stable_step = frequency
       f.write("particles/stiff_mode", st.stiff_mode, 3);
       f.write("clock/step_ratio", std::vector<double>{st.step_ratio});
@@ -100,7 +100,8 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
                (st.rams.empty() || check.read<double>("dies/rams", State::kRamValues) == ram_rows(st)) &&
                (contact.touched().empty() || check.read<std::int64_t>("dies/touched") == contact.touched()) &&
                (st.temperature.empty() || check.read<double>("points/temperature") == st.temperature) &&
-               (st.particle_dt_half.empty() || check.read<double>("particles/dt_half") == st.particle_dt_half) &&
+               (st.particle_dt_half.empty() || (check.read<double>("particles/dt_half") == st.particle_dt_half &&
+                                                check.read<double>("cells/t_last") == st.cell_t_last)) &&
                (st.stiff_mode.empty() || (check.read<double>("particles/stiff_mode", 3) == st.stiff_mode &&
                                           check.read<double>("clock/step_ratio") == std::vector<double>{st.step_ratio})) &&
                (st.stretch_last.empty() || (check.read<double>("points/stretch_last") == st.stretch_last &&
@@ -303,14 +304,17 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
   } else {
     st.stiff_mode.clear();
   }
-  // multi-rate steps: each particle's last step (a checkpoint without them: the global one for all)
+  // multi-rate steps: each particle's last step and each cell's last update (a checkpoint without them,
+  // or a stage's: every particle's the global step, every cell updated now)
   if (!st.particle_dt_half.empty()) {
     if (f.exists("particles/dt_half") && !stage) {
       st.particle_dt_half = f.read<double>("particles/dt_half");
-      if (updates != 0 || st.particle_dt_half.size() != md.n)
+      st.cell_t_last = f.read<double>("cells/t_last");
+      if (updates != 0 || st.particle_dt_half.size() != md.n || st.cell_t_last.size() != md.cells)
         throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
     } else {
       std::fill(st.particle_dt_half.begin(), st.particle_dt_half.end(), st.dt_half);
+      std::fill(st.cell_t_last.begin(), st.cell_t_last.end(), st.t);
     }
   }
   if (updates == 0) {

@@ -10,6 +10,8 @@
 // is that of the step just taken, ln(J^n / J^{n-1}) / dt^{n-1/2}. The work q does, the trapezoid
 // of q over the volume change, is dissipated: State::viscous_work, part of the internal energy.
 #pragma once
+#include <span>
+
 #include "model.hpp"
 #include "scene.hpp"
 #include "state.hpp"
@@ -21,5 +23,7 @@ void init_bulk_viscosity(const Model& md, State& st, const Scene::BulkViscosity&
 
 // After the deformation gradient at t^n: q and the step factor of every point, and the work of q.
 void update_bulk_viscosity(const Model& md, State& st, const Scene::BulkViscosity& k);
+// The same at the listed cells only, each over its own last increment State::cell_dt_half (multi-rate steps).
+void update_bulk_viscosity(const Model& md, State& st, const Scene::BulkViscosity& k, std::span<const std::int32_t> cells);
 
 }  // namespace rk

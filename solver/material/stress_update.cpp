@@ -45,7 +45,9 @@ void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n,
     if (!st.plastic_rate.empty()) b.rate_last[l] = st.plastic_rate[p];
   }
   for (int i = 0; i < 9; ++i) b.F.v[i] = ratio * F.v[i];  // (the lanes at rest: 1 times the identity)
-  b.dt = st.dt_half;  // the increment from the last state took the last step (0 at the start: no rate)
+  // the increment from the last state took the last step (0 at the start: no rate); with multi-rate
+  // steps the cell's own
+  b.dt = st.cell_dt_half.empty() ? st.dt_half : st.cell_dt_half[c];
 }
 
 // P = tau_eff F^{-T} = tau_eff cof(F) / det F for the points g .. g+n (tau theirs across the lanes),
