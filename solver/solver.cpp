@@ -222,7 +222,7 @@ void Simulation::warn_if_moving(const Comm& comm) {
 
 bool Simulation::update_due() const {
   const double strain = scene_.reference_updates.strain;
-  return sync_ && strain > 0 && limits_.strain_since_update > strain;
+  return sync_ && strain > 0 && limits_.strain_since_update > strain && (!subcycles_ || subcycles_->uniform());
 }
 
 void Simulation::reference_update() {
@@ -355,8 +355,11 @@ double Simulation::step_size(bool last) {
   // this step's frame where one is due now); none where the step was shortened to land
   const double next_output = clock_.next_output + (output_due(last) ? out_dt : 0.0);
   const double horizon = std::min(scene_.time.end, next_output) - st_.t;
+  const double strain = scene_.reference_updates.strain;  // an update due: one step of one rate first
+  const bool updating = strain > 0 && limits_.strain_since_update > strain;
   int levels = 0;
-  while (levels < subcycles_->max_levels() && !last && dt == limits_.dt && double(2 << levels) * dt <= horizon) ++levels;
+  while (levels < subcycles_->max_levels() && !last && !updating && dt == limits_.dt && double(2 << levels) * dt <= horizon)
+    ++levels;
   subcycles_->plan(md_, cell_dt_, dt, levels, st_.step, *exchange_);
   level_ = levels;
   cycle_dt_ = dt;
@@ -387,7 +390,10 @@ void Simulation::internal_force() {
   if (subcycles_) st_.partial.swap(contact_partial_), clear_internal_force(st_);  // the contact's own sums
   dies_->add_to(md_, st_, scale);  // die contact forces of the owned particles and points, once over all ranks
   parts_->add_to(md_, st_, scale);
-  if (subcycles_) st_.partial.swap(contact_partial_), exchange_->sum(contact_partial_), read_forces(contact_partial_, scale, contact_force_);
+  if (subcycles_) {
+    st_.partial.swap(contact_partial_), exchange_->sum(contact_partial_), read_forces(contact_partial_, scale, contact_force_);
+    subcycles_->touch(contact_force_);
+  }
   timer_.stop(kInternalForce);
   exchange_->start(st_.partial);
   timer_.stop(kOverlapExchange);
@@ -512,6 +518,12 @@ void Simulation::rebind() {
   results_ = collectively(
       comm_, [&] { return std::make_unique<ResultWriter>(opt_.case_dir, md_, scene_.prep_hash, results_->frames()); });
   v_old_.assign(st_.v.size(), 0.0);
+  if (subcycles_) {  // (the particles' own steps came with them; the cells are the same)
+    subcycles_ = std::make_unique<Subcycles>(md_, scene_.time.subcycling);
+    contact_partial_.assign(st_.partial.size(), 0);
+    contact_force_.assign(3 * md_.n, 0.0);
+    particle_dt_avg_.assign(md_.n, 0.0);
+  }
   if (frequency_) frequency_ = collectively(comm_, [&] { return std::make_unique<HighestFrequency>(md_, comm_); });
 }
 

@@ -26,7 +26,7 @@ void sort_by_class(std::span<const std::int32_t> entries, const auto& class_of, 
 
 Subcycles::Subcycles(const Model& md, int max_ratio)
     : max_levels_(std::countr_zero(unsigned(max_ratio))), point_cell_(md.m, -1), particle_class_(md.n, 0),
-      cell_class_(md.cells, 0), counts_(kForceStride * md.n, 0), all_cells_(md.cells) {
+      cell_class_(md.cells, 0), touched_(md.n, 0), counts_(kForceStride * md.n, 0), all_cells_(md.cells) {
   for (std::size_t c = 0; c < md.cells; ++c) all_cells_[c] = std::int32_t(c);
   for (std::size_t c = 0; c < md.cells; ++c)
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) point_cell_[std::size_t(g)] = std::int32_t(c);
@@ -58,6 +58,8 @@ void Subcycles::plan(const Model& md, const std::vector<double>& dt_cell, double
     for (auto k = support_offsets_[c]; k < support_offsets_[c + 1]; ++k)
       ++counts_[kForceStride * std::size_t(support_[std::size_t(k)]) + std::size_t(limit)];
   }
+  for (std::size_t I = 0; I < md.n; ++I)  // (every copy of a shared particle holds the same contact force)
+    if (touched_[I]) ++counts_[kForceStride * I], touched_[I] = 0;
   exchange.sum(counts_);
   for (std::size_t I = 0; I < md.n; ++I) {
     int k = 0;
@@ -82,6 +84,11 @@ void Subcycles::plan(const Model& md, const std::vector<double>& dt_cell, double
 int Subcycles::level(std::int64_t step) const {
   const std::int64_t offset = step - start_;
   return offset == 0 ? levels_ : std::min(levels_, std::countr_zero(std::uint64_t(offset)));
+}
+
+void Subcycles::touch(const std::vector<double>& contact_force) {
+  for (std::size_t I = 0; I < touched_.size(); ++I)
+    touched_[I] |= std::int8_t(contact_force[3 * I] != 0 || contact_force[3 * I + 1] != 0 || contact_force[3 * I + 2] != 0);
 }
 
 }  // namespace rk

@@ -13,7 +13,10 @@
 // particle moves every step, u += dt v, so a slower particle moves along its straight path in between
 // (the linear interpolation of Belytschko, Yen and Mullen's mixed time integration, 1979). The
 // force on a due particle is complete: every point whose row holds it has a class no larger than its
-// own. Contact and the essential BCs act on every particle at every step (dt), as without subcycling.
+// own. Contact and the essential BCs act on every particle at every step (dt), as without subcycling,
+// and a particle that met a contact in the last cycle takes the smallest step in the next: a slower one
+// would meet the die's penalty at every step and its own material's push once a span, a sawtooth in
+// the contact force (the die's work the same, its force at a cycle's start 1-6 % low).
 // Why and what was measured: docs/decisions.md, "Multi-rate steps".
 #pragma once
 #include <cstdint>
@@ -35,11 +38,17 @@ class Subcycles {
   // and a checkpoint, frame or history row may be written.
   bool starts(std::int64_t step) const { return start_ < 0 || step - start_ >= (std::int64_t(1) << levels_); }
   int max_levels() const { return max_levels_; }
+  // Whether every particle's last step is the same (the last cycle was of one step, or none yet): a
+  // reference update waits for this (its velocities v^h mix the particles').
+  bool uniform() const { return start_ < 0 || levels_ == 0; }
 
   // At a cycle's first step: dt_cell each cell's stable step (time_step.hpp, cell_time_steps), dt the
-  // smallest step, 2^levels of them the cycle. Collective (the classes of the shared particles).
+  // smallest step, 2^levels of them the cycle. The particles that took a contact force in the last
+  // cycle (touched) take the smallest step. Collective (the classes of the shared particles).
   void plan(const Model& md, const std::vector<double>& dt_cell, double dt, int levels, std::int64_t step,
             OverlapExchange& exchange);
+  // After a step's contact: marks the particles with a contact force (3 per particle) for the next plan.
+  void touch(const std::vector<double>& contact_force);
 
   // The classes due at `step` (a particle or cell is due when its class is at most this).
   int level(std::int64_t step) const;
@@ -59,7 +68,7 @@ class Subcycles {
   std::vector<std::int32_t> point_cell_;
   std::vector<std::int64_t> support_offsets_;  // cell c's particles: support_[support_offsets_[c] ..)
   std::vector<std::int32_t> support_;
-  std::vector<std::int8_t> particle_class_, cell_class_;
+  std::vector<std::int8_t> particle_class_, cell_class_, touched_;
   std::vector<std::int64_t> counts_;  // the classes' counts per particle (kForceStride), summed over ranks
   std::vector<std::int32_t> all_cells_;
   std::vector<std::int32_t> cells_, boundary_, interior_;  // sorted by class

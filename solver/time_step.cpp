@@ -79,11 +79,12 @@ void cell_time_steps(const Model& md, const State& st, double cfl, double enough
     const double scale0 = cell_scale(md, st, c);
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
       const double* F = &st.F[9 * std::size_t(g)];
-      const double scale = cfl * (st.dt_factor.empty() ? scale0 : scale0 * st.dt_factor[std::size_t(g)]);
+      const double scale = st.dt_factor.empty() ? scale0 : scale0 * st.dt_factor[std::size_t(g)];
       double trC = 0;  // the cheap lower bounds of stable_time_step: past `enough`, no more is needed
       for (int k = 0; k < 9; ++k) trC += F[k] * F[k];
-      const double bound = scale * std::max(2 * std::abs(st.J[g]) / trC, std::sqrt(std::max(gershgorin_floor(F), 0.0)));
-      dt_cell[c] = std::min(dt_cell[c], bound >= enough ? bound : scale * smallest_stretch(F, st.J[g]));
+      const double bound = cfl * (scale * std::max(2 * std::abs(st.J[g]) / trC, std::sqrt(std::max(gershgorin_floor(F), 0.0))));
+      // (CFL times the point's step, rounded as stable_time_step rounds the least)
+      dt_cell[c] = std::min(dt_cell[c], bound >= enough ? bound : cfl * (scale * smallest_stretch(F, st.J[g])));
     }
   }
 }

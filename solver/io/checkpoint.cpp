@@ -306,19 +306,20 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
   }
   // multi-rate steps: each particle's last step and each cell's last update (a checkpoint without them,
   // or a stage's: every particle's the global step, every cell updated now)
+  std::vector<double> dt_half;  // (the checkpoint's local particles)
   if (!st.particle_dt_half.empty()) {
+    std::fill(st.particle_dt_half.begin(), st.particle_dt_half.end(), st.dt_half);
+    std::fill(st.cell_t_last.begin(), st.cell_t_last.end(), st.t);
     if (f.exists("particles/dt_half") && !stage) {
-      st.particle_dt_half = f.read<double>("particles/dt_half");
+      dt_half = f.read<double>("particles/dt_half");
       st.cell_t_last = f.read<double>("cells/t_last");
-      if (updates != 0 || st.particle_dt_half.size() != md.n || st.cell_t_last.size() != md.cells)
-        throw Error(path + ": checkpoint datasets disagree with the subdomain's counts");
-    } else {
-      std::fill(st.particle_dt_half.begin(), st.particle_dt_half.end(), st.dt_half);
-      std::fill(st.cell_t_last.begin(), st.cell_t_last.end(), st.t);
+      if (dt_half.size() != u.size() / 3 || st.cell_t_last.size() != md.cells)
+        throw Error(path + ": checkpoint datasets disagree with each other's counts");
     }
   }
   if (updates == 0) {
     st.u = u, st.v = v;
+    if (!dt_half.empty()) st.particle_dt_half = dt_half;
     if (!mode.empty()) st.stiff_mode = mode;
     if (!T.empty()) st.particle_temperature = T, st.surface_heat = friction;
     if (st.u.size() != 3 * md.n || st.v.size() != 3 * md.n || (!T.empty() && (T.size() != md.n || friction.size() != md.n)))
@@ -343,6 +344,7 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
       throw Error(path + ": owned particle " + std::to_string(md.global_id[I]) + " is missing from the checkpoint");
     if (found) {
       for (int i = 0; i < 3; ++i) st.u[3 * I + i] = u[3 * k + i], st.v[3 * I + i] = v[3 * k + i], st.u_ref[3 * I + i] = u_ref[3 * k + i];
+      if (!dt_half.empty()) st.particle_dt_half[I] = dt_half[k];
       if (!T.empty()) st.particle_temperature[I] = T[k], st.surface_heat[I] = friction[k];
       if (!mode.empty())
         for (int i = 0; i < 3; ++i) st.stiff_mode[3 * I + i] = mode[3 * k + i];

@@ -16,8 +16,9 @@ namespace {
 
 // What an owner sends of each of its particles to the ranks that need it: global id, X (t = 0), d,
 // v, d^ref, volume, spacing at t = 0, flags, owner, temperature coefficient and friction heat (with
-// conduction), the stable step's mode (with time.stable_step = frequency).
-enum { kGid, kX = 1, kU = 4, kV = 7, kRef = 10, kVolume = 13, kSpacing0, kFlags, kOwner, kTemperature, kSurfaceHeat, kMode, kRecord = kMode + 3 };
+// conduction), the stable step's mode (with time.stable_step = frequency), its own last step (with multi-rate steps).
+enum { kGid, kX = 1, kU = 4, kV = 7, kRef = 10, kVolume = 13, kSpacing0, kFlags, kOwner, kTemperature, kSurfaceHeat, kMode,
+       kDtHalf = kMode + 3, kRecord };
 
 std::vector<double> owned_records(const Model& md, const State& st) {
   std::vector<double> out;
@@ -37,6 +38,7 @@ std::vector<double> owned_records(const Model& md, const State& st) {
     r[kTemperature] = st.particle_temperature.empty() ? 0.0 : st.particle_temperature[I];
     r[kSurfaceHeat] = st.surface_heat.empty() ? 0.0 : st.surface_heat[I];
     for (int i = 0; i < 3; ++i) r[kMode + i] = st.stiff_mode.empty() ? 0.0 : st.stiff_mode[3 * I + i];
+    r[kDtHalf] = st.particle_dt_half.empty() ? 0.0 : st.particle_dt_half[I];
     out.insert(out.end(), r, r + kRecord);
   }
   return out;
@@ -438,6 +440,10 @@ void rebuild_on_reference(Model& md, State& st, const Scene& scene, const Comm& 
     st.stiff_mode.resize(3 * next.n);
     for (std::size_t k = 0; k < next.n; ++k)
       for (int i = 0; i < 3; ++i) st.stiff_mode[3 * k + i] = halo[std::size_t(local[k])][kMode + i];
+  }
+  if (!st.particle_dt_half.empty()) {
+    st.particle_dt_half.resize(next.n);
+    for (std::size_t k = 0; k < next.n; ++k) st.particle_dt_half[k] = halo[std::size_t(local[k])][kDtHalf];
   }
   if (!st.particle_temperature.empty()) {
     st.particle_temperature.resize(next.n);

@@ -103,4 +103,48 @@ TEST(TimeStep, StableStepIsTheLeastOverThePointsFromAnyFirstCell) {
   }
 }
 
+// Each cell's own step, for the classes of multi-rate steps: exact (CFL times the least over its points,
+// to the bit) wherever it is below `enough`, and at least `enough` wherever the cheap bounds skipped it.
+// Cells of two sizes and three strains, 4 and 8x apart, as an impact's crushed foot beside its shank.
+TEST(TimeStep, EachCellsStepIsExactBelowEnough) {
+  rk::Model md;
+  const std::size_t cells = 24, per_cell = 8;
+  md.m = cells * per_cell, md.cells = cells;
+  for (std::size_t c = 0; c <= cells; ++c) md.cell_points.push_back(std::int32_t(c * per_cell));
+  for (std::size_t g = 0; g < md.m; ++g) md.weight.push_back(1e-9), md.dN_max.push_back(1e3);
+  rk::single_material(md, rk::J2Params::from(117.0e9, 0.35, 400.0e6, 100.0e6, true), 8930);
+  rk::State st = rk::State::initial(md, std::array<double, 3>{}.data(), std::array<double, 9>{}.data());
+  for (std::size_t c = 0; c < cells; ++c) {
+    md.cell_h0.push_back(c % 2 ? 1e-3 : 0.25e-3);
+    st.cell_J[c] = 1;
+    const double squeeze = c % 3 == 0 ? 0.125 : c % 3 == 1 ? 0.5 : 0.97;  // along z, the rest rotated
+    for (auto g = std::size_t(md.cell_points[c]); g < std::size_t(md.cell_points[c + 1]); ++g) {
+      stretch_between_rotations(1.0 + 0.001 * double(g % 5), 1.0, squeeze, &st.F[9 * g]);
+      st.J[g] = (1.0 + 0.001 * double(g % 5)) * squeeze;
+    }
+  }
+  const double cfl = 0.9, wave = std::sqrt(md.materials[0].wave_speed2(1.0));
+  const double least = rk::stable_time_step(md, st, cfl).dt;
+  std::vector<double> dt_cell;
+  for (const double ratio : {2.0, 4.0, 16.0}) {
+    rk::cell_time_steps(md, st, cfl, ratio * least, dt_cell);
+    ASSERT_EQ(dt_cell.size(), cells);
+    EXPECT_EQ(*std::min_element(dt_cell.begin(), dt_cell.end()), least) << "the least of them is the stable step";
+    int exact = 0;
+    for (std::size_t c = 0; c < cells; ++c) {
+      double own = std::numeric_limits<double>::infinity();
+      for (auto g = std::size_t(md.cell_points[c]); g < std::size_t(md.cell_points[c + 1]); ++g)
+        own = std::min(own, cfl * (md.cell_h0[c] / wave * rk::smallest_stretch(&st.F[9 * g], st.J[g])));
+      if (own < ratio * least) {
+        EXPECT_EQ(dt_cell[c], own) << "cell " << c << ", enough at " << ratio << "x";
+        ++exact;
+      } else {
+        EXPECT_GE(dt_cell[c], ratio * least) << "cell " << c << ": a cell the bounds skip is past enough";
+        EXPECT_LE(dt_cell[c], own * (1 + 1e-15)) << "cell " << c << ": never above its own step";
+      }
+    }
+    EXPECT_GT(exact, 0);
+  }
+}
+
 }  // namespace
