@@ -499,6 +499,7 @@ void check_subcycling(const Scene& s) {
   if (s.discretization.integration != "gauss" || s.discretization.volumetric != "fbar")
     refuse("'discretization.integration' other than gauss with 'volumetric' = fbar");
   if (s.time.stable_step != "cells") refuse("'time.stable_step' = " + s.time.stable_step);
+  if (s.reference_updates.strain > 0) refuse("'reference_updates.strain' > 0");
   if (!s.bodies.empty() || s.contact.self) refuse("'geometry.bodies' or 'contact.self' (the part's own contact)");
   auto rate_or_heat = [](const Material& m) {
     return m.thermal() || m.model == MaterialModel::johnson_cook || m.model == MaterialModel::hansel_spittel ||

@@ -222,7 +222,7 @@ void Simulation::warn_if_moving(const Comm& comm) {
 
 bool Simulation::update_due() const {
   const double strain = scene_.reference_updates.strain;
-  return sync_ && strain > 0 && limits_.strain_since_update > strain && (!subcycles_ || subcycles_->uniform());
+  return sync_ && strain > 0 && limits_.strain_since_update > strain;
 }
 
 void Simulation::reference_update() {
@@ -355,11 +355,8 @@ double Simulation::step_size(bool last) {
   // this step's frame where one is due now); none where the step was shortened to land
   const double next_output = clock_.next_output + (output_due(last) ? out_dt : 0.0);
   const double horizon = std::min(scene_.time.end, next_output) - st_.t;
-  const double strain = scene_.reference_updates.strain;  // an update due: one step of one rate first
-  const bool updating = strain > 0 && limits_.strain_since_update > strain;
   int levels = 0;
-  while (levels < subcycles_->max_levels() && !last && !updating && dt == limits_.dt && double(2 << levels) * dt <= horizon)
-    ++levels;
+  while (levels < subcycles_->max_levels() && !last && dt == limits_.dt && double(2 << levels) * dt <= horizon) ++levels;
   subcycles_->plan(md_, cell_dt_, dt, levels, st_.step, *exchange_);
   level_ = levels;
   cycle_dt_ = dt;
@@ -518,7 +515,7 @@ void Simulation::rebind() {
   results_ = collectively(
       comm_, [&] { return std::make_unique<ResultWriter>(opt_.case_dir, md_, scene_.prep_hash, results_->frames()); });
   v_old_.assign(st_.v.size(), 0.0);
-  if (subcycles_) {  // (the particles' own steps came with them; the cells are the same)
+  if (subcycles_) {  // a restart after updates (the particles' own steps came with them; the cells are the same)
     subcycles_ = std::make_unique<Subcycles>(md_, scene_.time.subcycling);
     contact_partial_.assign(st_.partial.size(), 0);
     contact_force_.assign(3 * md_.n, 0.0);

@@ -38,9 +38,6 @@ class Subcycles {
   // and a checkpoint, frame or history row may be written.
   bool starts(std::int64_t step) const { return start_ < 0 || step - start_ >= (std::int64_t(1) << levels_); }
   int max_levels() const { return max_levels_; }
-  // Whether every particle's last step is the same (the last cycle was of one step, or none yet): a
-  // reference update waits for this (its velocities v^h mix the particles').
-  bool uniform() const { return start_ < 0 || levels_ == 0; }
 
   // At a cycle's first step: dt_cell each cell's stable step (time_step.hpp, cell_time_steps), dt the
   // smallest step, 2^levels of them the cycle. The particles that took a contact force in the last

@@ -89,6 +89,7 @@ rkcase.check((killed / "history.csv").read_bytes() == (case / "history.csv").rea
 # 3. What is not built yet: one error naming the key, a non-zero exit
 for bad, says in ((["time.subcycling=3"], "must be 1, 2, 4, 8 or 16"),
                   (["time.subcycling=4", "material.specific_heat=385"], "temperature"),
+                  (["time.subcycling=4", "reference_updates.strain=0.2"], "reference_updates.strain"),
                   (["time.subcycling=4", "time.stable_step=frequency"], "time.stable_step")):
     p = tools.solve(case, 1, sets=bad, expect_ok=False)
     rkcase.check(p.returncode != 0 and "time.subcycling" in p.stderr and says in p.stderr and p.stderr.count("error") == 1,
