@@ -357,7 +357,7 @@ double Simulation::step_size(bool last) {
   const double horizon = std::min(scene_.time.end, next_output) - st_.t;
   int levels = 0;
   while (levels < subcycles_->max_levels() && !last && dt == limits_.dt && double(2 << levels) * dt <= horizon) ++levels;
-  subcycles_->plan(md_, cell_dt_, dt, levels, st_.step, *exchange_);
+  subcycles_->plan(md_, cell_dt_, dt, levels, st_.step, [&](std::vector<Fixed>& counts) { exchange_->sum(counts); });
   level_ = levels;
   cycle_dt_ = dt;
   return dt;

@@ -45,7 +45,7 @@ Subcycles::Subcycles(const Model& md, int max_ratio)
 }
 
 void Subcycles::plan(const Model& md, const std::vector<double>& dt_cell, double dt, int levels, std::int64_t step,
-                     OverlapExchange& exchange) {
+                     const SumOverRanks& sum) {
   start_ = step;
   levels_ = levels;
   static_assert(kForceStride == kMaxLevels, "a particle's counts: one per class below the largest");
@@ -60,7 +60,7 @@ void Subcycles::plan(const Model& md, const std::vector<double>& dt_cell, double
   }
   for (std::size_t I = 0; I < md.n; ++I)  // (every copy of a shared particle holds the same contact force)
     if (touched_[I]) ++counts_[kForceStride * I], touched_[I] = 0;
-  exchange.sum(counts_);
+  sum(counts_);
   for (std::size_t I = 0; I < md.n; ++I) {
     int k = 0;
     while (k < levels && counts_[kForceStride * I + std::size_t(k)] == 0) ++k;

@@ -20,11 +20,12 @@
 // Why and what was measured: docs/decisions.md, "Multi-rate steps".
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
 #include "model.hpp"
-#include "parallel/overlap_exchange.hpp"
+#include "parallel/fixed_point.hpp"
 
 namespace rk {
 
@@ -41,9 +42,11 @@ class Subcycles {
 
   // At a cycle's first step: dt_cell each cell's stable step (time_step.hpp, cell_time_steps), dt the
   // smallest step, 2^levels of them the cycle. The particles that took a contact force in the last
-  // cycle (touched) take the smallest step. Collective (the classes of the shared particles).
+  // cycle (touched) take the smallest step. `sum` adds the other ranks' counts of the shared particles
+  // (kForceStride per particle, OverlapExchange::sum; collective).
+  using SumOverRanks = std::function<void(std::vector<Fixed>&)>;
   void plan(const Model& md, const std::vector<double>& dt_cell, double dt, int levels, std::int64_t step,
-            OverlapExchange& exchange);
+            const SumOverRanks& sum);
   // After a step's contact: marks the particles with a contact force (3 per particle) for the next plan.
   void touch(const std::vector<double>& contact_force);
 
@@ -66,7 +69,7 @@ class Subcycles {
   std::vector<std::int64_t> support_offsets_;  // cell c's particles: support_[support_offsets_[c] ..)
   std::vector<std::int32_t> support_;
   std::vector<std::int8_t> particle_class_, cell_class_, touched_;
-  std::vector<std::int64_t> counts_;  // the classes' counts per particle (kForceStride), summed over ranks
+  std::vector<Fixed> counts_;  // the classes' counts per particle (kForceStride), summed over ranks
   std::vector<std::int32_t> all_cells_;
   std::vector<std::int32_t> cells_, boundary_, interior_;  // sorted by class
   std::vector<std::size_t> cells_end_, boundary_end_, interior_end_;  // per level: the due entries
