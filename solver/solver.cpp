@@ -91,6 +91,7 @@ class Simulation {
   void start_presses(double h_min);
   void check_reach();
   void rebind();  // after a reference update: what is sized by the rank's local particles
+  void start_subcycles();
   void write_frame(const std::vector<double>& velocity);
 
   const SolveOptions& opt_;
@@ -288,7 +289,8 @@ void Simulation::stress_update() {
     }
     update_bulk_viscosity(md_, st_, scene_.bulk_viscosity, due);
     stress_ = update_stress(md_, st_, pressure_bound_, due);
-    point_updates_ += sync_ ? double(md_.m) : double(subcycles_->boundary_points(level_).size() + subcycles_->interior_points(level_).size());
+    point_updates_ += sync_ ? double(md_.m)
+                            : double(subcycles_->boundary_points(level_).size() + subcycles_->interior_points(level_).size());
   }
   plastic_updates_ += double(stress_.plastic);
   timer_.stop(kStressUpdate);
@@ -380,9 +382,10 @@ void Simulation::internal_force() {
   const int headroom = step_headroom(headroom_, force_terms_, limits_.force_bound, limits_.contact_bound);
   const FixedScale scale = FixedScale::for_bound(limits_.force_bound, headroom);
   clear_internal_force(st_);
+  using Points = std::span<const std::int32_t>;
   const bool all = sync_ || !subcycles_;  // (multi-rate steps: the points due)
-  const std::span<const std::int32_t> boundary = all ? std::span<const std::int32_t>(md_.boundary_points) : subcycles_->boundary_points(level_);
-  const std::span<const std::int32_t> interior = all ? std::span<const std::int32_t>(md_.interior_points) : subcycles_->interior_points(level_);
+  const Points boundary = all ? Points(md_.boundary_points) : subcycles_->boundary_points(level_);
+  const Points interior = all ? Points(md_.interior_points) : subcycles_->interior_points(level_);
   add_internal_force(md_, st_, scale, boundary);
   if (subcycles_) st_.partial.swap(contact_partial_), clear_internal_force(st_);  // the contact's own sums
   dies_->add_to(md_, st_, scale);  // die contact forces of the owned particles and points, once over all ranks
@@ -441,7 +444,8 @@ void Simulation::boundary_work(double dt_avg) {
     for (std::size_t I = 0; I < md_.n; ++I)
       if (md_.owned[I])
         for (int i = 0; i < 3; ++i)
-          st_.external_work += (subcycles_ ? particle_dt_avg_[I] : dt_avg) * md_.mass[I] * g[i] * 0.5 * (v_old_[3 * I + i] + st_.v[3 * I + i]);
+          st_.external_work += (subcycles_ ? particle_dt_avg_[I] : dt_avg) * md_.mass[I] * g[i] * 0.5 *
+                               (v_old_[3 * I + i] + st_.v[3 * I + i]);
   timer_.stop(kBoundaryWork);
 }
 
@@ -499,6 +503,14 @@ void Simulation::write_frame(const std::vector<double>& velocity) {
   collectively(comm_, [&] { return results_->write_frame(md_, st_, velocity, comm_, dies), 0; });
 }
 
+// Multi-rate steps on this model: the classes (planned at the first step) and the per-particle arrays.
+void Simulation::start_subcycles() {
+  subcycles_ = std::make_unique<Subcycles>(md_, scene_.time.subcycling);
+  contact_partial_.assign(st_.partial.size(), 0);
+  contact_force_.assign(3 * md_.n, 0.0);
+  particle_dt_avg_.assign(md_.n, 0.0);
+}
+
 void Simulation::rebind() {
   const int die_count = int(md_.dies.size());
   ebc_ = collectively(comm_, [&] { return std::make_unique<EssentialBcs>(md_, scene_, comm_); });
@@ -515,12 +527,7 @@ void Simulation::rebind() {
   results_ = collectively(
       comm_, [&] { return std::make_unique<ResultWriter>(opt_.case_dir, md_, scene_.prep_hash, results_->frames()); });
   v_old_.assign(st_.v.size(), 0.0);
-  if (subcycles_) {  // a restart after updates (the particles' own steps came with them; the cells are the same)
-    subcycles_ = std::make_unique<Subcycles>(md_, scene_.time.subcycling);
-    contact_partial_.assign(st_.partial.size(), 0);
-    contact_force_.assign(3 * md_.n, 0.0);
-    particle_dt_avg_.assign(md_.n, 0.0);
-  }
+  if (subcycles_) start_subcycles();  // a restart after updates (each particle's own step came with it)
   if (frequency_) frequency_ = collectively(comm_, [&] { return std::make_unique<HighestFrequency>(md_, comm_); });
 }
 
@@ -636,12 +643,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   first_step_ = st_.step;
   const int die_count = int(md_.dies.size());
   exchange_.emplace(md_, int(kForceStride));
-  if (scene_.time.subcycling > 1) {
-    subcycles_ = std::make_unique<Subcycles>(md_, scene_.time.subcycling);
-    contact_partial_.assign(st_.partial.size(), 0);
-    contact_force_.assign(3 * md_.n, 0.0);
-    particle_dt_avg_.assign(md_.n, 0.0);
-  }
+  if (scene_.time.subcycling > 1) start_subcycles();
   last_checkpoint_step_ = st_.step;
   headroom_ = force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm);
   force_terms_ = force_terms(md_, *dies_, *parts_, comm);

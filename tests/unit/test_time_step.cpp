@@ -63,16 +63,27 @@ TEST(TimeStep, GershgorinFloorBoundsTheSmallestEigenvalueFromBelow) {
 // 40 cells of points stretched unevenly near F = I (rotated) or compressed evenly along z (unrotated,
 // where Gershgorin's bound is exact and many points lie within 1.5 % of the least). Each cell in turn
 // is made the one that sets the step (its h0 2 % shorter), and every cell is tried first.
-TEST(TimeStep, StableStepIsTheLeastOverThePointsFromAnyFirstCell) {
+// `cells` cells of 8 points each, of copper
+rk::Model copper_cells(std::size_t cells) {
   rk::Model md;
-  const std::size_t cells = 40, per_cell = 8;
+  const std::size_t per_cell = 8;
   md.m = cells * per_cell, md.cells = cells;
   for (std::size_t c = 0; c <= cells; ++c) md.cell_points.push_back(std::int32_t(c * per_cell));
   for (std::size_t g = 0; g < md.m; ++g) md.weight.push_back(1e-9), md.dN_max.push_back(1e3);
+  rk::single_material(md, rk::J2Params::from(117.0e9, 0.35, 400.0e6, 100.0e6, true), 8930);
+  return md;
+}
+
+rk::State at_rest(const rk::Model& md) {
+  return rk::State::initial(md, std::array<double, 3>{}.data(), std::array<double, 9>{}.data());
+}
+
+TEST(TimeStep, StableStepIsTheLeastOverThePointsFromAnyFirstCell) {
+  const std::size_t cells = 40;
+  rk::Model md = copper_cells(cells);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> U(0, 1);
-  rk::single_material(md, rk::J2Params::from(117.0e9, 0.35, 400.0e6, 100.0e6, true), 8930);
-  rk::State st = rk::State::initial(md, std::array<double, 3>{}.data(), std::array<double, 9>{}.data());
+  rk::State st = at_rest(md);
   for (std::size_t g = 0; g < md.m; ++g) {
     double* F = &st.F[9 * g];
     if (g % 2 == 0) {  // compressed evenly: 0.700-0.710 along z
@@ -107,13 +118,9 @@ TEST(TimeStep, StableStepIsTheLeastOverThePointsFromAnyFirstCell) {
 // to the bit) wherever it is below `enough`, and at least `enough` wherever the cheap bounds skipped it.
 // Cells of two sizes and three strains, 4 and 8x apart, as an impact's crushed foot beside its shank.
 TEST(TimeStep, EachCellsStepIsExactBelowEnough) {
-  rk::Model md;
-  const std::size_t cells = 24, per_cell = 8;
-  md.m = cells * per_cell, md.cells = cells;
-  for (std::size_t c = 0; c <= cells; ++c) md.cell_points.push_back(std::int32_t(c * per_cell));
-  for (std::size_t g = 0; g < md.m; ++g) md.weight.push_back(1e-9), md.dN_max.push_back(1e3);
-  rk::single_material(md, rk::J2Params::from(117.0e9, 0.35, 400.0e6, 100.0e6, true), 8930);
-  rk::State st = rk::State::initial(md, std::array<double, 3>{}.data(), std::array<double, 9>{}.data());
+  const std::size_t cells = 24;
+  rk::Model md = copper_cells(cells);
+  rk::State st = at_rest(md);
   for (std::size_t c = 0; c < cells; ++c) {
     md.cell_h0.push_back(c % 2 ? 1e-3 : 0.25e-3);
     st.cell_J[c] = 1;
