@@ -506,10 +506,7 @@ void check_subcycling(const Scene& s) {
            m.model == MaterialModel::table;
   };
   if (rate_or_heat(s.material)) refuse("a rate-dependent material or a temperature ('material')");
-  for (const Die& d : s.dies) {
-    if (d.motion.driven()) refuse("die '" + d.name + "' driven by its press");
-    if (d.shear_factor > 0) refuse("die '" + d.name + "' with shear friction");
-  }
+  if (!s.dies.empty() || !s.rigid_walls.empty()) refuse("dies or rigid walls (a particle's first touch)");
 }
 
 Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Override>& overrides, Side side) {

@@ -124,6 +124,26 @@ TEST(Scene, OverridesApplyAndAreValidated) {
   EXPECT_THROW(rk::parse_override("time.cfl"), rk::Error);
 }
 
+// Multi-rate steps: a power of two up to 16, and what they are not built for refused naming the key
+TEST(Scene, SubcyclingRefusesWhatItIsNotBuiltFor) {
+  const auto with = [](const char* value) {
+    return std::vector<rk::Override>{rk::parse_override(std::string("time.subcycling=") + value)};
+  };
+  EXPECT_EQ(rk::load_scene(write_scene(kGood), with("16")).time.subcycling, 16);
+  EXPECT_NE(error_of(kGood, with("6")).find("key 'time.subcycling': must be 1, 2, 4, 8 or 16"), std::string::npos);
+  const std::string upsetting = std::string(RK_SOURCE_DIR) + "/geometry/upsetting/scene.yaml";
+  std::string e;
+  try {
+    rk::load_scene(upsetting, with("4"));
+  } catch (const rk::Error& x) {
+    e = x.what();
+  }
+  EXPECT_NE(e.find("'time.subcycling' = 4 cannot be combined with dies or rigid walls"), std::string::npos) << e;
+  EXPECT_NE(error_of(kGood, {rk::parse_override("time.subcycling=2"), rk::parse_override("reference_updates.strain=0.2")})
+                .find("cannot be combined with 'reference_updates.strain' > 0"),
+            std::string::npos);
+}
+
 TEST(Scene, SyntaxErrorNamesTheLine) {
   const auto e = error_of("geometry:\n  cad: [unclosed\n");
   EXPECT_NE(e.find("YAML syntax error"), std::string::npos) << e;
