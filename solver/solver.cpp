@@ -359,8 +359,13 @@ double Simulation::step_size(bool last) {
   const double horizon = std::min(scene_.time.end, next_output) - st_.t;
   int levels = 0;
   while (levels < subcycles_->max_levels() && !last && dt == limits_.dt && double(2 << levels) * dt <= horizon) ++levels;
-  subcycles_->plan(md_, cell_dt_, dt, levels, st_.step, [&](std::vector<Fixed>& counts) { exchange_->sum(counts); });
-  level_ = levels;
+  subcycles_->plan(md_, cell_dt_, dt, levels, st_.step, [&](std::vector<Fixed>& counts) { exchange_->sum(counts); },
+                   [&](int k) {
+                     double top = k;
+                     comm_.max(&top, 1);
+                     return int(top);
+                   });
+  level_ = subcycles_->level(st_.step);
   cycle_dt_ = dt;
   return dt;
 }
@@ -472,6 +477,8 @@ void Simulation::history(double dt, bool last) {
   if (st_.t > t0_ + 0.05 * run) clock_.max_ke_ratio = std::max(clock_.max_ke_ratio, row.kinetic_internal);
   if (st_.t > t0_ + 0.5 * run) clock_.max_ke_ratio_late = std::max(clock_.max_ke_ratio_late, row.kinetic_internal);
   clock_.next_history += run / 500;
+  // (multi-rate steps: a row waits for a cycle's start; the rows it passed are not caught up later)
+  while (subcycles_ && clock_.next_history <= st_.t + 1e-9 * run / 500) clock_.next_history += run / 500;
   health_->after_history(md_, st_, *dies_, row.energy_error, started, comm_, last_frame_);
   timer_.stop(kHistory);
 }

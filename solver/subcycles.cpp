@@ -45,9 +45,8 @@ Subcycles::Subcycles(const Model& md, int max_ratio)
 }
 
 void Subcycles::plan(const Model& md, const std::vector<double>& dt_cell, double dt, int levels, std::int64_t step,
-                     const SumOverRanks& sum) {
+                     const SumOverRanks& sum, const LargestOverRanks& largest) {
   start_ = step;
-  levels_ = levels;
   static_assert(kForceStride == kMaxLevels, "a particle's counts: one per class below the largest");
   // each cell counts its limit class at every particle of its points' rows; the least counted is the particle's
   std::fill(counts_.begin(), counts_.end(), 0);
@@ -66,6 +65,11 @@ void Subcycles::plan(const Model& md, const std::vector<double>& dt_cell, double
     while (k < levels && counts_[kForceStride * I + std::size_t(k)] == 0) ++k;
     particle_class_[I] = std::int8_t(k);
   }
+  // the cycle no longer than its largest class needs (a part all at the smallest step: one step), so
+  // frames, history rows and checkpoints are not held back for nothing
+  int top = 0;
+  for (std::size_t I = 0; I < md.n; ++I) top = std::max(top, int(particle_class_[I]));
+  levels = levels_ = largest(top);
   double updates = 0;
   for (std::size_t c = 0; c < md.cells; ++c) {
     int k = levels;

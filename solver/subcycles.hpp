@@ -42,11 +42,13 @@ class Subcycles {
 
   // At a cycle's first step: dt_cell each cell's stable step (time_step.hpp, cell_time_steps), dt the
   // smallest step, 2^levels of them the cycle. The particles that took a contact force in the last
-  // cycle (touched) take the smallest step. `sum` adds the other ranks' counts of the shared particles
-  // (kForceStride per particle, OverlapExchange::sum; collective).
+  // cycle (touched) take the smallest step. The cycle is as long as its largest class needs (2^levels
+  // at most). `sum` adds the other ranks' counts of the shared particles (kForceStride per particle,
+  // OverlapExchange::sum), `largest` the largest over the ranks (collective both).
   using SumOverRanks = std::function<void(std::vector<Fixed>&)>;
+  using LargestOverRanks = std::function<int(int)>;
   void plan(const Model& md, const std::vector<double>& dt_cell, double dt, int levels, std::int64_t step,
-            const SumOverRanks& sum);
+            const SumOverRanks& sum, const LargestOverRanks& largest);
   // After a step's contact: marks the particles with a contact force (3 per particle) for the next plan.
   void touch(const std::vector<double>& contact_force);
 
