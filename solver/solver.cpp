@@ -283,12 +283,9 @@ void Simulation::stress_update() {
     point_updates_ += double(md_.m);
   } else {  // the cells due, each over its own increment since its last update
     const std::span<const std::int32_t> due = sync_ ? subcycles_->all_cells() : subcycles_->cells(level_);
-    for (const std::int32_t c : due) {
-      st_.cell_dt_half[std::size_t(c)] = st_.t - st_.cell_t_last[std::size_t(c)];
-      st_.cell_t_last[std::size_t(c)] = st_.t;
-    }
     update_bulk_viscosity(md_, st_, scene_.bulk_viscosity, due);
     stress_ = update_stress(md_, st_, pressure_bound_, due);
+    for (const std::int32_t c : due) st_.cell_t_last[std::size_t(c)] = st_.t;
     point_updates_ += sync_ ? double(md_.m)
                             : double(subcycles_->boundary_points(level_).size() + subcycles_->interior_points(level_).size());
   }
@@ -392,11 +389,14 @@ void Simulation::internal_force() {
   const Points boundary = all ? Points(md_.boundary_points) : subcycles_->boundary_points(level_);
   const Points interior = all ? Points(md_.interior_points) : subcycles_->interior_points(level_);
   add_internal_force(md_, st_, scale, boundary);
-  if (subcycles_) st_.partial.swap(contact_partial_), clear_internal_force(st_);  // the contact's own sums
-  dies_->add_to(md_, st_, scale);  // die contact forces of the owned particles and points, once over all ranks
-  parts_->add_to(md_, st_, scale);
+  // multi-rate steps: the contact's own sums (it acts at every step, the internal force at each particle's)
+  std::vector<Fixed>& contact = subcycles_ ? contact_partial_ : st_.partial;
+  if (subcycles_) std::fill(contact_partial_.begin(), contact_partial_.end(), Fixed(0));
+  dies_->add_to(md_, contact, scale);  // die contact forces of the owned particles and points, once over all ranks
+  parts_->add_to(md_, contact, scale);
   if (subcycles_) {
-    st_.partial.swap(contact_partial_), exchange_->sum(contact_partial_), read_forces(contact_partial_, scale, contact_force_);
+    exchange_->sum(contact_partial_);
+    read_forces(contact_partial_, scale, contact_force_);
     subcycles_->touch(contact_force_);
   }
   timer_.stop(kInternalForce);
@@ -565,7 +565,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
       for (int i = 0; i < 3; ++i) st_.v[3 * I + i] = scene_.bodies[md_.body[I] - 1u].velocity[i];
   init_bulk_viscosity(md_, st_, scene_.bulk_viscosity);
   if (scene_.time.subcycling > 1)  // (or the checkpoint's)
-    st_.particle_dt_half.assign(md_.n, 0.0), st_.cell_t_last.assign(md_.cells, 0.0), st_.cell_dt_half.assign(md_.cells, 0.0);
+    st_.particle_dt_half.assign(md_.n, 0.0), st_.cell_t_last.assign(md_.cells, 0.0);
   if (scene_.material.thermal()) {  // by the points' positions at t = 0
     st_.temperature.resize(md_.m);
     for (std::size_t g = 0; g < md_.m; ++g) st_.temperature[g] = scene_.initial.temperature_at(&md_.point_X[3 * g]);

@@ -19,8 +19,8 @@ struct State {
   // with multi-rate steps (subcycles.hpp; empty otherwise): each particle's own last step, the span of
   // its velocity v^{n-1/2}
   std::vector<double> particle_dt_half;
-  // and each cell's: the time of its last update, and the span of its increment this step
-  std::vector<double> cell_t_last, cell_dt_half;
+  // and each cell's last update time (its next increment spans t - cell_t_last)
+  std::vector<double> cell_t_last;
 
   // particles (3 per particle)
   std::vector<double> u, v, force;  // displacement d_I, velocity, net internal force f^int_I

@@ -70,15 +70,12 @@ void Subcycles::plan(const Model& md, const std::vector<double>& dt_cell, double
   int top = 0;
   for (std::size_t I = 0; I < md.n; ++I) top = std::max(top, int(particle_class_[I]));
   levels = levels_ = largest(top);
-  double updates = 0;
   for (std::size_t c = 0; c < md.cells; ++c) {
     int k = levels;
     for (auto j = support_offsets_[c]; j < support_offsets_[c + 1]; ++j)
       k = std::min(k, int(particle_class_[std::size_t(support_[std::size_t(j)])]));
     cell_class_[c] = std::int8_t(k);
-    updates += double(md.cell_points[c + 1] - md.cell_points[c]) / double(1 << k);
   }
-  update_share_ = md.m > 0 ? updates / double(md.m) : 1.0;
   sort_by_class(all_cells_, [&](std::int32_t c) { return cell_class_[std::size_t(c)]; }, levels, cells_, cells_end_);
   auto point_class = [&](std::int32_t g) { return cell_class_[std::size_t(point_cell_[std::size_t(g)])]; };
   sort_by_class(md.boundary_points, point_class, levels, boundary_, boundary_end_);

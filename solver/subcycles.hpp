@@ -60,8 +60,6 @@ class Subcycles {
   std::span<const std::int32_t> boundary_points(int level) const { return {boundary_.data(), boundary_end_[std::size_t(level)]}; }
   std::span<const std::int32_t> interior_points(int level) const { return {interior_.data(), interior_end_[std::size_t(level)]}; }
   int particle_class(std::size_t I) const { return particle_class_[I]; }
-  // The cycle's share of point updates: sum over cells of their points / 2^class, over all points.
-  double update_share() const { return update_share_; }
 
  private:
   int max_levels_;
@@ -75,7 +73,6 @@ class Subcycles {
   std::vector<std::int32_t> all_cells_;
   std::vector<std::int32_t> cells_, boundary_, interior_;  // sorted by class
   std::vector<std::size_t> cells_end_, boundary_end_, interior_end_;  // per level: the due entries
-  double update_share_ = 1;
 };
 
 }  // namespace rk

@@ -412,18 +412,18 @@ void DieContact::box(const double part_lo[3], const double part_hi[3], double t,
   for (int d = 0; d < 3; ++d) lo[d] -= grow, hi[d] += grow;
 }
 
-void DieContact::add_to(const Model& md, State& st, const FixedScale& scale) const {
+void DieContact::add_to(const Model& md, std::vector<Fixed>& partial, const FixedScale& scale) const {
   for (const auto& a : active_) {  // f acts on the field at the slave: N_J f on d_J
     const Row r = row(md, std::size_t(a.slave));
     for (std::int32_t k = 0; k < r.size; ++k)
       for (int i = 0; i < 3; ++i)
-        st.partial[kForceStride * std::size_t(r.cols[k]) + i] -= scale.fixed(r.N[k] * (a.normal_force[i] + a.friction_force[i]));
+        partial[kForceStride * std::size_t(r.cols[k]) + i] -= scale.fixed(r.N[k] * (a.normal_force[i] + a.friction_force[i]));
   }
   for (const auto& ff : face_active_) {  // a face's friction, equally on its nodes' coefficients
     const auto k0 = md.surface_face_offsets[std::size_t(ff.face)], k1 = md.surface_face_offsets[std::size_t(ff.face) + 1];
     for (auto k = k0; k < k1; ++k)
       for (int i = 0; i < 3; ++i)
-        st.partial[kForceStride * std::size_t(md.surface_face_nodes[std::size_t(k)]) + i] -= scale.fixed(ff.force[i] / double(k1 - k0));
+        partial[kForceStride * std::size_t(md.surface_face_nodes[std::size_t(k)]) + i] -= scale.fixed(ff.force[i] / double(k1 - k0));
   }
 }
 

@@ -47,10 +47,12 @@ class DieContact {
   bool empty() const { return dies_.empty() && planes_.empty(); }  // nothing to meet
 
   // Contact forces at time t from the positions and the velocities v^{n-1/2}; dt is the previous
-  // (global) step, dt_min the smallest so far (contact_laws.hpp). Adds -f_c to the fixed-point partials (after compute and the bound reduction).
-  // Returns the largest force contribution to one particle, for the fixed-point bound.
+  // (global) step, dt_min the smallest so far (contact_laws.hpp). Returns the largest force contribution
+  // to one particle, for the fixed-point bound.
   double compute(const Model& md, const State& st, double t, double dt, double dt_min);
-  void add_to(const Model& md, State& st, const FixedScale& scale) const;
+  // Adds -f_c to the fixed-point partials (kForceStride per particle, as State::partial; after compute
+  // and the bound reduction).
+  void add_to(const Model& md, std::vector<Fixed>& partial, const FixedScale& scale) const;
   // After the velocity update: the work of this step's contact forces with vbar. With heat
   // conduction, the friction's heat is shared between the die (its `heat`) and the part: at a point
   // slave its temperature rises, at a particle slave its surface_heat gathers it for the next thermal

@@ -209,12 +209,12 @@ double PartContact::compute(const Model& md, const State& st, double dt, double 
   return largest;
 }
 
-void PartContact::add_to(const Model& md, State& st, const FixedScale& scale) const {
+void PartContact::add_to(const Model& md, std::vector<Fixed>& partial, const FixedScale& scale) const {
   for (const Active& a : active_) {  // f acts on the field at the slave: N_J f on d_J
     const auto I = std::size_t(slaves_[std::size_t(a.slave)]);
     for (auto k = md.material_offsets[I]; k < md.material_offsets[I + 1]; ++k)
       for (int i = 0; i < 3; ++i)
-        st.partial[kForceStride * std::size_t(md.material_cols[std::size_t(k)]) + i] -= scale.fixed(md.material_N[std::size_t(k)] * a.f[i]);
+        partial[kForceStride * std::size_t(md.material_cols[std::size_t(k)]) + i] -= scale.fixed(md.material_N[std::size_t(k)] * a.f[i]);
   }
 }
 

@@ -44,8 +44,9 @@ class PartContact {
   // Collective (one exchange of the surface particles near other ranks). Returns the largest force
   // contribution to one coefficient, for the fixed-point bound.
   double compute(const Model& md, const State& st, double dt, double dt_min, const Comm& comm);
-  // Adds -N_J f to the fixed-point partials of the slaves' rows (after compute and the bound reduction).
-  void add_to(const Model& md, State& st, const FixedScale& scale) const;
+  // Adds -N_J f to the fixed-point partials of the slaves' rows (kForceStride per particle, as
+  // State::partial; after compute and the bound reduction).
+  void add_to(const Model& md, std::vector<Fixed>& partial, const FixedScale& scale) const;
   // After the velocity update: the work of this step's pair forces on the material, into st.part_contact_work.
   void account(const Model& md, State& st, const std::vector<double>& v_old, double dt_avg) const;
   // One term per coefficient of every slave's row (a slave's pairs are summed before they are spread).

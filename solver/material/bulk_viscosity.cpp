@@ -62,7 +62,7 @@ void update_bulk_viscosity(const Model& md, State& st, const Scene::BulkViscosit
 void update_bulk_viscosity(const Model& md, State& st, const Scene::BulkViscosity& k, std::span<const std::int32_t> cells) {
   if (st.q.empty()) return;
   double work = 0;
-  for (const std::int32_t c : cells) cell_viscosity(md, st, k, std::size_t(c), st.cell_dt_half[std::size_t(c)], work);
+  for (const std::int32_t c : cells) cell_viscosity(md, st, k, std::size_t(c), st.t - st.cell_t_last[std::size_t(c)], work);
   st.viscous_work += work;
 }
 

@@ -23,7 +23,8 @@ void init_bulk_viscosity(const Model& md, State& st, const Scene::BulkViscosity&
 
 // After the deformation gradient at t^n: q and the step factor of every point, and the work of q.
 void update_bulk_viscosity(const Model& md, State& st, const Scene::BulkViscosity& k);
-// The same at the listed cells only, each over its own last increment State::cell_dt_half (multi-rate steps).
+// The same at the listed cells only, each over its own increment since its last update, t -
+// State::cell_t_last (multi-rate steps).
 void update_bulk_viscosity(const Model& md, State& st, const Scene::BulkViscosity& k, std::span<const std::int32_t> cells);
 
 }  // namespace rk

@@ -47,7 +47,7 @@ void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n,
   for (int i = 0; i < 9; ++i) b.F.v[i] = ratio * F.v[i];  // (the lanes at rest: 1 times the identity)
   // the increment from the last state took the last step (0 at the start: no rate); with multi-rate
   // steps the cell's own
-  b.dt = st.cell_dt_half.empty() ? st.dt_half : st.cell_dt_half[c];
+  b.dt = st.cell_t_last.empty() ? st.dt_half : st.t - st.cell_t_last[c];
 }
 
 // P = tau_eff F^{-T} = tau_eff cof(F) / det F for the points g .. g+n (tau theirs across the lanes),

@@ -78,7 +78,7 @@ TEST(RigidWall, ALiftThroughTheWallIsPushedBackAlongItsNormal) {
 
   const rk::FixedScale scale = rk::FixedScale::for_bound(bound, 12);
   std::fill(st.partial.begin(), st.partial.end(), rk::Fixed(0));
-  contact.add_to(md, st, scale);
+  contact.add_to(md, st.partial, scale);
   double on_particles = 0;
   for (std::size_t I = 0; I < md.n; ++I) on_particles -= scale.real(st.partial[rk::kForceStride * I + 2]);
   EXPECT_NEAR(on_particles / wall.force[2], 1.0, 1e-9) << "sum_J N_J f = f";

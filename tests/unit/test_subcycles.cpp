@@ -50,7 +50,6 @@ TEST(Subcycles, ClassesFromTheCellsStepsAndTheirRows) {
   EXPECT_EQ(list(s.boundary_points(0)), (std::vector<std::int32_t>{0, 1, 2}));
   EXPECT_TRUE(s.interior_points(3).empty());
   EXPECT_EQ(s.interior_points(4).size(), 4u);
-  EXPECT_DOUBLE_EQ(s.update_share(), (3 + 5 / 16.0) / 8);
   // the classes due at each offset of the cycle of 16: those k with 2^k dividing it (all at its start)
   const int due[16] = {4, 0, 1, 0, 2, 0, 1, 0, 3, 0, 1, 0, 2, 0, 1, 0};
   for (int o = 0; o < 16; ++o) {
