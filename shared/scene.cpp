@@ -770,9 +770,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
   {
     Section t = top.section("time", true);
     s.time.end = t.number("end", std::nullopt, {0, 1e6, true, false});
-    // defaults (docs/decisions.md, "CFL default: 0.9 without dies, 0.5 with dies"): a die's penalty
-    // stiffness is tied to the step (k = s m / dt^2), so with dies the default stays 0.5
-    s.time.cfl = t.number("cfl", s.dies.empty() ? 0.9 : 0.5, {0, 2, true, false});
+    s.time.cfl = t.number("cfl", s.default_cfl(), {0, 2, true, false});
     // (docs/decisions.md, "The stable step from the highest frequency": not the default yet)
     s.time.stable_step = t.text("stable_step", "cells", {"cells", "frequency"});
     s.time.dwell = t.text("dwell", "auto", {"auto", "off"});

@@ -722,7 +722,7 @@ void Simulation::start_presses(double h_min) {
     if (md_.owned[I]) part_mass += md_.mass[I];
   comm_.sum(&part_mass, 1);
   for (const Die& d : scene_.dies) {
-    const double least = scene_.contact.penalty_scale * part_mass * d.force_factor;
+    const double least = scene_.penalty_scale_at_cfl() * part_mass * d.force_factor;
     if (!d.motion.driven() || d.motion.ram.mass >= least) continue;
     char text[300];
     std::snprintf(text, sizeof text, "die '%s': a ram_mass of %.4g kg is too light for the penalty contact against the part "

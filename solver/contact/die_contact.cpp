@@ -12,7 +12,7 @@
 namespace rk {
 
 DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<DieSurface>& surfaces)
-    : dies_(scene.dies), surfaces_(surfaces), penalty_scale_(scene.contact.penalty_scale) {
+    : dies_(scene.dies), surfaces_(surfaces), penalty_scale_(scene.penalty_scale_at_cfl()) {
   for (const RigidWall& w : scene.rigid_walls) {  // its normal points into the part's side
     Plane p{{w.point[0], w.point[1], w.point[2]}, {w.normal[0], w.normal[1], w.normal[2]}, dies_.size() + planes_.size()};
     planes_.push_back(p);

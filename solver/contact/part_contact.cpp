@@ -24,7 +24,7 @@ double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1]
 }  // namespace
 
 PartContact::PartContact(const Model& md, const Scene& scene, const Comm& comm)
-    : on_(scene.part_contact()), self_(scene.contact.self), penalty_scale_(scene.contact.penalty_scale),
+    : on_(scene.part_contact()), self_(scene.contact.self), penalty_scale_(scene.penalty_scale_at_cfl()),
       d_(kDiameter * scene.discretization.spacing) {
   if (!on_) return;
   // the free faces: not on a symmetry plane (within 1e-9 of the coordinates' scale, their round-off)

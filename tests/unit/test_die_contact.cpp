@@ -23,6 +23,7 @@
 //   either sliding direction.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "contact/die_contact.hpp"
@@ -66,6 +67,25 @@ TEST(DieContact, ALiftIntoTheDieMeetsItAtTheParticlesAndThePoints) {
   double on_particles = 0;
   for (std::size_t I = 0; I < md.n; ++I) on_particles -= scale.real(st.partial[rk::kForceStride * I + 2]);
   EXPECT_NEAR(on_particles / tot.force[2], 1.0, 1e-9) << "sum_J N_J f = f";
+}
+
+// A CFL changes the step, not the contact's stiffness: the same lift at time.cfl = 0.9, with its step
+// 1.8x the default's (k = s m / dt_min^2, the scale taken at the default CFL 0.5), meets the die with the
+// default's force; at 1.5 the spring's own bound m / dt^2 holds it instead.
+TEST(DieContact, ACflChangesTheStepNotTheStiffness) {
+  auto pressed = [](const char* cfl, double dt) {
+    Upsetting u;
+    u.scene = rk::load_scene(kSource + "/geometry/upsetting/scene.yaml",
+                             {{"discretization.spacing", "2.5e-3"}, {"time.cfl", cfl}});
+    rk::State st = rk::State::initial(u.md, std::array<double, 9>{}.data(), std::array<double, 9>{}.data());
+    for (std::size_t I = 0; I < u.md.n; ++I) st.u[3 * I + 2] = 0.8e-3;
+    rk::DieContact contact(u.md, u.scene, u.dies);
+    contact.compute(u.md, st, 0.0, dt, dt);
+    return contact.totals()[0].force[2];
+  };
+  const double dt = 1e-7, f = pressed("0.5", dt);
+  EXPECT_NEAR(pressed("0.9", 1.8 * dt) / f, 1.0, 1e-12);
+  EXPECT_NEAR(pressed("1.5", 3.0 * dt) / f, 1.0 / (0.25 * 9.0), 1e-12) << "at most m / dt^2";
 }
 
 TEST(DieContact, SkippedLookupsFindTheSameContactsAsLookingUpEverySlave) {
