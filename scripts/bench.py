@@ -318,7 +318,7 @@ def report(res, a):
                       f"{r['work_j']:.6g} |")
         wheel, fast = res["forming"][-2:]
         md += ["", f"Wheel forging at time.cfl=0.9: {wheel['solve_s'] / fast['solve_s']:.2f}x faster than the default's "
-               f"0.5 in this run, its punch work {100 * (fast['work_j'] / wheel['work_j'] - 1):+.2f} % from the default's."]
+               f"0.5 in this run, its punch work {100 * (fast['work_j'] / wheel['work_j'] - 1):+.3f} % from the default's."]
         md.append("")
     return "\n".join(md)
 
