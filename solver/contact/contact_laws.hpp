@@ -1,7 +1,8 @@
 // The pointwise contact laws, apart from the obstacle search and the loops over slaves
 // (die_contact.cpp): for one slave in contact, the force the rigid obstacle puts on it.
 // - Normal: penalty on the penetration depth d, f_n = k d along the obstacle's normal n (toward the
-//   material), k = s m / dt_min^2 with m the slave's mass and dt_min the smallest unclipped global
+//   material), k = s m / dt_min^2 with s the scale at this run's CFL (Scene::penalty_scale_at_cfl: the
+//   stiffness does not follow time.cfl), m the slave's mass and dt_min the smallest unclipped global
 //   stable step so far (since the last reference update, which starts a new configuration): tied to the step, so contact never shrinks it (s <= 1), and never softening,
 //   so a stiffness that follows the step's ringing does not pump energy into a ringing contact; at
 //   most m / dt^2 (sqrt(k/m) dt <= 1, half the spring's stability limit) where the step grew back.
