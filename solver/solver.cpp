@@ -599,6 +599,17 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
       if (comm.rank() == 0) std::fprintf(stderr, "rksolve: warning: %s\n", text);
     }
   }
+  for (const Die& d : scene_.dies)  // (docs/decisions.md, "CFL default: 0.9 without dies, 0.5 with dies")
+    if ((d.friction > 0 || d.shear_factor > 0) && scene_.time.cfl > scene_.default_cfl()) {
+      char text[400];
+      std::snprintf(text, sizeof text, "time.cfl = %g above the dies' default %g with friction on die '%s': the stick "
+                    "force stops the sliding one step at a time, so the material slips more as the step grows (the "
+                    "back extrusion's punch work reads 0.54 %% low at 0.9); without friction the answer holds",
+                    scene_.time.cfl, scene_.default_cfl(), d.name.c_str());
+      start_warnings_.push_back(text);
+      if (comm.rank() == 0) std::fprintf(stderr, "rksolve: warning: %s\n", text);
+      break;
+    }
   comm.min(&dt0, 1);
   if (scene_.time.mass_scaling_dt > dt0) {  // quasi-static forming: scale the density up
     const double factor = std::pow(scene_.time.mass_scaling_dt / dt0, 2);
