@@ -604,7 +604,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
       char text[400];
       std::snprintf(text, sizeof text, "time.cfl = %g above the dies' default %g with friction on die '%s': the stick "
                     "force stops the sliding one step at a time, so the material slips more as the step grows (the "
-                    "back extrusion's punch work reads 0.54 %% low at 0.9); without friction the answer holds",
+                    "back extrusion's punch work reads 0.9 %% low at 0.9 over its stroke); without friction the answer holds",
                     scene_.time.cfl, scene_.default_cfl(), d.name.c_str());
       start_warnings_.push_back(text);
       if (comm.rank() == 0) std::fprintf(stderr, "rksolve: warning: %s\n", text);
