@@ -50,6 +50,7 @@ UPSET_HOT = "upsetting/scene_hot.yaml"
 THIN_WALL = "thin_wall/scene.yaml"
 BEAM = "beam/scene.yaml"
 BAR_WALLS = "elastic_bar/scene_walls.yaml"
+TAYLOR_WALL = "taylor_bar/scene_contact.yaml"  # the bar against a penalty rigid wall instead of the held face
 # converged finite-element values at 80 us (Foulk et al. 2021): the reference for the errors
 TAYLOR_REF = {"footprint_radius_mm": 7.22, "final_length_mm": 21.45}
 PAPER_SPEEDUP = {2: 1.81, 4: 3.21, 8: 6.41, 16: 10.39, 32: 24.14}  # Taylor bar, Table 2 of Wang et al. 2007
@@ -154,6 +155,9 @@ def stability():
     cases = [Case("taylor_" + k.replace(" ", "_").replace("/", ""),
                   **taylor(h, end, *s, prep=p, scene=TAYLOR_ELASTIC if "elastic" in k else TAYLOR), label=k)
              for k, p, s in knobs]
+    if not SMOKE:  # the bar against the penalty rigid wall, whose spring takes more of its limit above CFL 0.9
+        cases += [Case(f"taylor_rigid_wall_cfl_{c}", **taylor(h, end, f"time.cfl={c}", scene=TAYLOR_WALL),
+                       label=f"rigid wall cfl {c}") for c in (0.9, 1.5, 2.0)]
     if not SMOKE:  # a thin feature: the wall's 1.2 mm thickness with 2 particles across, and with 3
         for across, h_wall in ((2, 1.2), (3, 0.6)):
             cases.append(Case(f"thin_wall_{across}_across", scene=THIN_WALL, prep=[f"discretization.spacing={h_wall}e-3"],
