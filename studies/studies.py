@@ -155,10 +155,11 @@ def stability():
     cases = [Case("taylor_" + k.replace(" ", "_").replace("/", ""),
                   **taylor(h, end, *s, prep=p, scene=TAYLOR_ELASTIC if "elastic" in k else TAYLOR), label=k)
              for k, p, s in knobs]
-    if not SMOKE:  # the bar against the penalty rigid wall, whose spring takes more of its limit above CFL 0.9
+    if not SMOKE:
+        # the bar against the penalty rigid wall, whose spring takes more of its limit above CFL 0.9
         cases += [Case(f"taylor_rigid_wall_cfl_{c}", **taylor(h, end, f"time.cfl={c}", scene=TAYLOR_WALL),
                        label=f"rigid wall cfl {c}") for c in (0.9, 1.5, 2.0)]
-    if not SMOKE:  # a thin feature: the wall's 1.2 mm thickness with 2 particles across, and with 3
+        # a thin feature: the wall's 1.2 mm thickness with 2 particles across, and with 3
         for across, h_wall in ((2, 1.2), (3, 0.6)):
             cases.append(Case(f"thin_wall_{across}_across", scene=THIN_WALL, prep=[f"discretization.spacing={h_wall}e-3"],
                               solve=["time.end=40e-6", "time.output_interval=10e-6"], label=f"thin wall, {across} across"))
