@@ -11,6 +11,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <string>
+
+#include <unistd.h>
 
 #include "cad_mesh.hpp"
 #include "discretize.hpp"
@@ -23,11 +26,25 @@ namespace {
 
 const std::string kSource = RK_SOURCE_DIR;
 
+// Written when the test cases are listed, so by every test process that ctest starts: one file per process
+// (a shared one was rewritten under a reader running beside it, which then read an empty box), removed at
+// the process's end.
+struct TetBoxFile {
+  std::filesystem::path path =
+      std::filesystem::temp_directory_path() / ("rk_nodal_tet_box_" + std::to_string(::getpid()) + ".geo");
+  TetBoxFile() {
+    std::ofstream(path) << "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 10, 6, 4};\nMesh.MeshSizeMax = h;\n"
+                           "Mesh.MeshSizeMin = h;\n";
+  }
+  ~TetBoxFile() {
+    std::error_code ignored;
+    std::filesystem::remove(path, ignored);
+  }
+};
+
 std::string tet_box_geo() {
-  const auto path = std::filesystem::temp_directory_path() / "rk_nodal_tet_box.geo";
-  std::ofstream(path) << "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 10, 6, 4};\nMesh.MeshSizeMax = h;\n"
-                         "Mesh.MeshSizeMin = h;\n";
-  return path.string();
+  static const TetBoxFile file;
+  return file.path.string();
 }
 
 struct MeshCase {
