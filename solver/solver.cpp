@@ -523,9 +523,11 @@ void Simulation::rebind() {
   ebc_ = collectively(comm_, [&] { return std::make_unique<EssentialBcs>(md_, scene_, comm_); });
   const std::vector<DieTotals> totals = dies_->totals();
   const std::vector<std::int64_t> touched = dies_->touched();  // the die fill stays
+  const std::vector<double> sticks = dies_->stick_rows();  // and the friction's sticks
   dies_ = std::make_unique<DieContact>(md_, scene_, md_.dies);
   dies_->totals() = totals;
   dies_->touched() = touched;
+  dies_->set_stick_rows(md_, sticks, "the reference update");
   parts_ = std::make_unique<PartContact>(md_, scene_, comm_);
   exchange_.emplace(md_, int(kForceStride));
   headroom_ = force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm_);
@@ -600,11 +602,11 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     }
   }
   for (const Die& d : scene_.dies)  // (docs/decisions.md, "CFL default: 0.9 without dies, 0.5 with dies")
-    if ((d.friction > 0 || d.shear_factor > 0) && scene_.time.cfl > scene_.default_cfl()) {
+    if (d.shear_factor > 0 && scene_.time.cfl > scene_.default_cfl()) {
       char text[400];
-      std::snprintf(text, sizeof text, "time.cfl = %g above the dies' default %g with friction on die '%s': the stick "
-                    "force stops the sliding one step at a time, so the material slips more as the step grows (the "
-                    "back extrusion's punch work reads 0.9 %% low at 0.9 over its stroke); without friction the answer holds",
+      std::snprintf(text, sizeof text, "time.cfl = %g above the dies' default %g with the shear factor on die '%s': "
+                    "its faces' stick stops their sliding one step at a time, so where they stick they slip more as the "
+                    "step grows (Coulomb friction's elastic stick holds at any step)",
                     scene_.time.cfl, scene_.default_cfl(), d.name.c_str());
       start_warnings_.push_back(text);
       if (comm.rank() == 0) std::fprintf(stderr, "rksolve: warning: %s\n", text);

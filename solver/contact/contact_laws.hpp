@@ -7,9 +7,10 @@
 //   so a stiffness that follows the step's ringing does not pump energy into a ringing contact; at
 //   most m / dt^2 (sqrt(k/m) dt <= 1, half the spring's stability limit) where the step grew back.
 //   The spring stores k d^2 / 2.
-// - Tangential: Coulomb friction. The stick force f_s is the force that stops the relative
-//   tangential velocity v_t in one step (m |v_t| / dt, the caller's share of it); the slave sticks
-//   when f_s <= mu f_n and slips with mu f_n otherwise, always against v_t.
+// - Tangential: Coulomb friction with an elastic stick, a tangential spring of the same stiffness k
+//   loaded by the slip and capped at mu f_n (the return map of penalty friction in the explicit FE
+//   codes); its stiffness held like the normal's, a stuck slave's slip does not grow with the step.
+//   The spring stores |f_t|^2 / (2 k).
 // - The shear factor and hybrid laws of hot forging (tau = m k, tau = min(mu p, m k)) act on the part's
 //   boundary faces (contact/die_contact.cpp) with the flow stress and pressure of the face's cell.
 // Pure functions, unit-tested without particles or MPI (tests/unit/test_contact_laws.cpp).
@@ -47,11 +48,26 @@ inline void sliding_friction(double c, double x, double stick_force, const doubl
   for (int i = 0; i < 3; ++i) f[i] = -magnitude * vt[i] / vt_norm;
 }
 
-// Coulomb friction: the force min(f_stick, mu f_n) against the sliding direction.
-inline void coulomb_friction(double mu, double normal_force, double stick_force, const double vt[3], double vt_norm,
-                             double f[3]) {
-  sliding_friction(mu, normal_force, stick_force, vt, vt_norm, f);
+// Coulomb friction with an elastic stick: a tangential spring of the normal's stiffness k between the
+// slave and the point of the obstacle it stuck to. The last step's friction force f_old, its part in
+// the tangent plane of the normal n, is loaded by the step's tangential slip v_t dt into the trial
+// force f* = f_old,t - k dt v_t; the slave sticks (f = f*) while |f*| <= mu f_n and slips with
+// f = mu f_n f* / |f*| otherwise. A stuck slave slides at most mu f_n / k = mu d (d its penetration)
+// whatever the step, where a stick force that stops the sliding in one step leaks a slip that grows
+// with the step. Zero when mu = 0.
+inline void coulomb_friction(double mu, double normal_force, double k, const double f_old[3], const double normal[3],
+                             const double vt[3], double dt, double f[3]) {
+  f[0] = f[1] = f[2] = 0;
+  if (!(mu > 0)) return;
+  const double on_normal = f_old[0] * normal[0] + f_old[1] * normal[1] + f_old[2] * normal[2];
+  for (int i = 0; i < 3; ++i) f[i] = f_old[i] - on_normal * normal[i] - k * dt * vt[i];
+  const double trial = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]), cap = mu * normal_force;
+  if (trial > cap)
+    for (int i = 0; i < 3; ++i) f[i] *= cap / trial;
 }
+
+// The energy an elastic stick of stiffness k stores at its force f: |f|^2 / (2 k) (J).
+inline double stick_energy(const double f[3], double k) { return (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / (2 * k); }
 
 // The friction stress of the forging codes' laws at an interface where the material's flow stress is
 // sigma_y (so its shear yield stress k = sigma_y / sqrt 3) and the contact pressure p >= 0:

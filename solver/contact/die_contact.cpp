@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "contact/contact_laws.hpp"
+#include "error.hpp"
 #include "parallel/overlap_exchange.hpp"
 #include "rk/kinematics.hpp"
 #include "rk/surface_faces.hpp"
@@ -35,7 +36,7 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
   for (std::size_t I = 0; I < md.n; ++I)
     if (md.owned[I]) {
       hmax = std::max(hmax, md.spacing[I]);
-      if (!nodal) particles_.push_back(std::int32_t(I));
+      if (!nodal) particles_.push_back(std::int32_t(I)), particle_ids_.push_back(md.global_id[I]);
     }
   // Penetrations stay far below half a spacing (the penalty is stiff); deeper ones would be missed.
   margin_ = 0.5 * hmax;
@@ -53,6 +54,9 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
   }
   const std::size_t obstacles = dies_.size() + planes_.size();
   active_.reserve(slaves * obstacles);
+  std::size_t coulomb = 0;  // the dies with Coulomb friction at the slaves (compute)
+  for (const Die& d : dies_) coulomb += d.friction > 0 && !(d.shear_factor > 0);
+  sticks_.reserve(slaves * coulomb), last_sticks_.reserve(slaves * coulomb);
   clearance_.assign(slaves * obstacles, 0.0);  // 0: looked up at the first step
   const std::size_t blocks = (slaves + kBlock - 1) / kBlock;
   block_N_sum_.assign(blocks, 0.0);
@@ -134,8 +138,45 @@ void DieContact::material_value(const Model& md, const std::vector<double>& a, s
     for (int i = 0; i < 3; ++i) out[i] += r.N[k] * a[3 * std::size_t(r.cols[k]) + i];
 }
 
+std::vector<double> DieContact::stick_rows() const {
+  std::vector<double> rows;
+  for (const Stick& k : sticks_) {
+    const auto s = std::size_t(k.slave);
+    const double slave = s < particles_.size() ? double(particle_ids_[s]) : -double(s - particles_.size() + 1);
+    rows.insert(rows.end(), {slave, double(k.obstacle), k.force[0], k.force[1], k.force[2]});
+  }
+  return rows;
+}
+
+void DieContact::set_stick_rows(const Model& md, const std::vector<double>& rows, const std::string& source) {
+  std::vector<std::pair<std::int64_t, std::int32_t>> by_id;  // owned particle's global id -> its slave
+  for (std::size_t s = 0; s < particles_.size(); ++s) by_id.emplace_back(particle_ids_[s], std::int32_t(s));
+  std::sort(by_id.begin(), by_id.end());
+  sticks_.clear();
+  for (std::size_t r = 0; r + kStickValues <= rows.size(); r += kStickValues) {
+    const double key = rows[r], die = rows[r + 1];
+    std::int64_t slave = -1;
+    if (key >= 0) {
+      const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::make_pair(std::int64_t(key), std::int32_t(-1)));
+      if (it != by_id.end() && it->first == std::int64_t(key)) slave = it->second;
+    } else if (-key - 1 < double(md.m)) {
+      slave = std::int64_t(particles_.size()) + std::int64_t(-key - 1);
+    }
+    if (slave < 0 || !(die >= 0 && die < double(dies_.size())))
+      throw Error(source + ": a friction stick names " + (key >= 0 ? "particle " : "point ") +
+                  std::to_string(std::int64_t(key >= 0 ? key : -key - 1)) + " on die " + std::to_string(std::int64_t(die)) +
+                  ", which this rank's contact does not hold");
+    sticks_.push_back({std::int32_t(slave), std::int32_t(die), {rows[r + 2], rows[r + 3], rows[r + 4]}});
+  }
+  std::sort(sticks_.begin(), sticks_.end(), [](const Stick& a, const Stick& b) {
+    return a.obstacle != b.obstacle ? a.obstacle < b.obstacle : a.slave < b.slave;
+  });
+}
+
 double DieContact::compute(const Model& md, const State& st, double t, double dt, double dt_min) {
   active_.clear();
+  sticks_.swap(last_sticks_);  // the last step's sticks, in (obstacle, slave) order as the loops below meet them
+  sticks_.clear();
   if (empty()) return 0;
   // How far any local coefficient moved since the last call: a slave moved at most sum_J |N_J| times that.
   double moved = 0;
@@ -168,6 +209,16 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     // Coulomb at the slaves; with a shear factor the faces take the friction (face_friction)
     const double mu = die && !(dies_[k].shear_factor > 0) ? dies_[k].friction : 0.0;
     const double margin = margin_;
+    std::size_t held = 0;  // the first of the last step's sticks not before (k, s)
+    auto last_stick = [&](std::size_t s) -> const double* {
+      static constexpr double kNone[3] = {0, 0, 0};
+      while (held < last_sticks_.size() && (std::size_t(last_sticks_[held].obstacle) < k ||
+                                            (std::size_t(last_sticks_[held].obstacle) == k && std::size_t(last_sticks_[held].slave) < s)))
+        ++held;
+      const bool found = held < last_sticks_.size() && std::size_t(last_sticks_[held].obstacle) == k &&
+                         std::size_t(last_sticks_[held].slave) == s;
+      return found ? last_sticks_[held].force : kNone;
+    };
     // a clearance under 1e-6 of the margin is the bound's round-off: the slave is looked up
     const double clear = 1e-6 * margin;  // only a slave at least this far out is skipped
     DieTotals& tot = totals_[die ? k : planes_[k - dies_.size()].total];
@@ -214,18 +265,22 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
         if (!hit.found || hit.gap >= 0) continue;
         const double depth = -hit.gap, m = mass_[s];
         const double kI = penalty_stiffness(penalty_scale_, m, dt_min, dt);
-        Active a{std::int32_t(s), std::int32_t(k), {}, {}, die ? hit.triangle : -1};
+        Active a{std::int32_t(s), std::int32_t(k), {}, {}, die ? hit.triangle : -1, 0.0};
         if (die) touched_[triangle0_[k] + std::size_t(hit.triangle)] = 1;
         penalty_force(kI, depth, hit.normal, a.normal_force);
         double v_rel[3], vt[3];  // the material's velocity relative to the obstacle
         material_value(md, st.v, s, v_rel);
         if (die)
           for (int i = 0; i < 3; ++i) v_rel[i] -= rate * mo->direction[i];
-        const double vt_norm = tangential_velocity(v_rel, hit.normal, vt);
-        // the stick force stops the sliding in one step; a point's half of it: a particle and the points
-        // around it sample the same interface, and together they must not reverse it
-        const double stick = (s < particles_.size() ? 1.0 : 0.5) * m * vt_norm / dt;
-        coulomb_friction(mu, kI * depth, stick, vt, vt_norm, a.friction_force);
+        tangential_velocity(v_rel, hit.normal, vt);
+        if (mu > 0) {  // the elastic stick carried from the last step, loaded by this step's slip
+          const double* f_old = last_stick(s);
+          coulomb_friction(mu, kI * depth, kI, f_old, hit.normal, vt, dt, a.friction_force);
+          const double stored = stick_energy(a.friction_force, kI);
+          a.stick_stored = stored - stick_energy(f_old, kI);
+          tot.spring_energy += stored;
+          sticks_.push_back({std::int32_t(s), std::int32_t(k), {a.friction_force[0], a.friction_force[1], a.friction_force[2]}});
+        }
         for (int i = 0; i < 3; ++i) {
           tot.force[i] += a.normal_force[i] + a.friction_force[i];
           largest = std::max(largest, N_max_[s] * std::abs(a.normal_force[i] + a.friction_force[i]));
@@ -445,6 +500,7 @@ void DieContact::account(const Model& md, State& st, const std::vector<double>& 
       tot.press_work += dt_avg * f * die_v;
       friction -= dt_avg * a.friction_force[i] * (vbar - die_v);
     }
+    friction -= a.stick_stored;  // what the elastic stick stores is not dissipated
     tot.friction_work += friction;
     if (!conducting || !die || friction == 0) continue;
     const double to_die = dies_[std::size_t(a.obstacle)].friction_heat_share * friction;

@@ -10,7 +10,7 @@
 // them there both ways; a symmetry plane's normal points to the side of the rank's particles.
 // The pointwise laws are in contact/contact_laws.hpp: penalty k = s m / dt_min^2 (m the particle's mass
 // or the point's rho w_g, dt_min the smallest stable step so far, so contact never shortens it) and Coulomb friction
-// with a stick force that stops the sliding in one step; a point's stick force stops half of it.
+// with an elastic stick of the same k, whose force a slave carries from step to step while it touches the die.
 // A slave is looked up only when its clearance at its last lookup, less how far it and the die may
 // have moved since, may have run out, and a block of slaves only when its least clearance may have.
 // Computed by each particle's and each point's OWNER only; the forces enter the fixed-point partial
@@ -18,6 +18,7 @@
 // Why each choice, with what was measured: docs/decisions.md, "Contact".
 #pragma once
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "contact/die_candidates.hpp"
@@ -111,6 +112,14 @@ class DieContact {
   double symmetry_depth() const;
   std::int32_t deepest_particle(const Model& md) const;
 
+  // Coulomb friction's elastic sticks (contact_laws.hpp): the friction force each slave put on the die
+  // it touched at the last step, which the next step loads further. As rows of kStickValues, a slave
+  // named by its particle's global id (>= 0) or its point's index g as -(g + 1), so that they survive
+  // a reference update (which renumbers the local particles) and a checkpoint.
+  static constexpr std::size_t kStickValues = 5;  // slave, die, force (3)
+  std::vector<double> stick_rows() const;
+  void set_stick_rows(const Model& md, const std::vector<double>& rows, const std::string& source);
+
  private:
   struct Row {  // a slave's shape functions (md.material_* or the point's): u^h(x) = sum_k N[k] d_{cols[k]}
     const std::int32_t* cols;
@@ -121,6 +130,7 @@ class DieContact {
     std::int32_t slave, obstacle;  // slave: particles first, then points; obstacle: dies, then planes
     double normal_force[3], friction_force[3];
     std::int32_t triangle;         // of the die's surface (-1: a plane)
+    double stick_stored;           // the energy this step put into its elastic stick (J; what its friction does not dissipate)
   };
   Row row(const Model& md, std::size_t s) const;
   DieHit die_hit(std::size_t k, const double x[3], double t) const;  // x's closest point on die k at time t
@@ -139,6 +149,7 @@ class DieContact {
   std::size_t walls_ = 0;
   std::int32_t deepest_ = -1;  // this step's slave deepest past a symmetry plane
   std::vector<std::int32_t> particles_;  // the owned particles (slaves 0 .. particles_.size())
+  std::vector<std::int64_t> particle_ids_;  // their global ids
   std::vector<double> mass_, N_sum_, N_max_;  // per slave: m, sum_J |N_J|, max_J |N_J|
   // per obstacle and slave: a lower bound on its distance to the obstacle
   std::vector<double> clearance_;
@@ -149,6 +160,11 @@ class DieContact {
   std::vector<double> block_N_sum_, block_floor_, block_moved_, block_die_moved_;
   std::vector<double> u_last_, stroke_last_;  // at the last compute
   std::vector<Active> active_;        // reserved once: no allocation per step
+  struct Stick {  // a slave's friction force on die `obstacle`
+    std::int32_t slave, obstacle;
+    double force[3];
+  };
+  std::vector<Stick> sticks_, last_sticks_;  // this step's and the last's, in (obstacle, slave) order (reserved once)
 
   // Shear factor and hybrid friction (dies with shear_factor > 0) on the part's boundary faces of this
   // rank: a face whose centre is within a tenth of its size of such a die (or inside it) slides with

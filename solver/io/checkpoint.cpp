@@ -47,6 +47,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     f.write("dies/work", die_work, 3);
     if (!st.rams.empty()) f.write("dies/rams", ram_rows(st), State::kRamValues);
     if (!contact.touched().empty()) f.write("dies/touched", contact.touched());
+    f.write("dies/sticks", contact.stick_rows(), DieContact::kStickValues);
     f.set_attr("reference_updates", st.reference_updates);
     f.write("particles/global_id", md.global_id);
     f.write("particles/u", st.u, 3);
@@ -99,6 +100,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
                (st.q.empty() || (check.read<double>("points/q") == st.q && check.read<double>("points/J_last") == st.J_last)) &&
                (st.rams.empty() || check.read<double>("dies/rams", State::kRamValues) == ram_rows(st)) &&
                (contact.touched().empty() || check.read<std::int64_t>("dies/touched") == contact.touched()) &&
+               check.read<double>("dies/sticks", DieContact::kStickValues) == contact.stick_rows() &&
                (st.temperature.empty() || check.read<double>("points/temperature") == st.temperature) &&
                (st.particle_dt_half.empty() || (check.read<double>("particles/dt_half") == st.particle_dt_half &&
                                                 check.read<double>("cells/t_last") == st.cell_t_last)) &&
@@ -226,6 +228,8 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
         std::copy(touched.begin() + std::ptrdiff_t(first[std::size_t(j)]), touched.begin() + std::ptrdiff_t(first[std::size_t(j) + 1]),
                   contact.touched().begin() + std::ptrdiff_t(contact.triangle0(k)));
   }
+  if (!stage)  // Coulomb friction's sticks (a stage's dies start without)
+    contact.set_stick_rows(md, f.read<double>("dies/sticks", DieContact::kStickValues), path);
   if (f.exists("dies/rams") && !stage) {  // the rams of the dies driven by their press
     const auto rows = f.read<double>("dies/rams", State::kRamValues);
     st.rams.resize(rows.size() / State::kRamValues);

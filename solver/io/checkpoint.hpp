@@ -17,7 +17,7 @@
 namespace rk {
 
 // The layout of the checkpoint files: a reader refuses another.
-inline constexpr std::int64_t kCheckpointFormat = 8;
+inline constexpr std::int64_t kCheckpointFormat = 9;
 
 // What the time loop carries besides the State.
 struct RunClock {

@@ -56,9 +56,13 @@ rkcase.check(error < 0.02, f"energy error {100 * error:.2f} % at most after the 
 # The points' volume (sum w_g J) is elastic by construction (the return map keeps det F_p = 1): here
 # the compression under the mean pressure, 0.43 % at the end (554 MPa / K). What the discretization
 # loses shows in the cells through the particles' material positions, less the points' change
-# (scripts/forming_report.py): -0.37 % at the end, 0.56 % at most over the frames, measured (a hex
-# cell's 6 tetrahedra read the twisted cells at the punch corner to some 0.5 %). The cup wall
-# shortfall of the coefficient-held contact (12 % of its height) was some 6 % of the volume.
+# (scripts/forming_report.py; a hex cell's 6 tetrahedra read the twisted cells at the punch corner).
+# Measured 2026-12-05 with Coulomb friction's elastic stick: 1.68 % at most, in the last 0.3 ms, where
+# the cup wall, held at the punch and the container, shears across two or three particles. The stick
+# that stopped the sliding one step at a time let the material creep along the tools and read 0.72 %
+# at the default step, but 1.35 % at CFL 0.15: the growth is the friction's, converged in the step.
+# The bound is about twice that; the cup wall shortfall of the coefficient-held contact (12 % of its
+# height) was some 6 % of the volume.
 volume = max(abs(float(r["volume_change"])) for r in rows)
 rkcase.check(volume < 0.01, f"volume change of the points {100 * volume:.2f} % at most (elastic)")
 
@@ -69,7 +73,7 @@ tools.post(case)
 report = json.loads(subprocess.run([sys.executable, str(rkcase.ROOT / "scripts" / "forming_report.py"), str(case), "--json"],
                                    check=True, capture_output=True, text=True).stdout)
 lost = report["max_abs_cells_less_points"]
-rkcase.check(lost < 0.01, f"cells through the particles within {100 * lost:.2f} % of the points' volume at every frame")
+rkcase.check(lost < 0.034, f"cells through the particles within {100 * lost:.2f} % of the points' volume at every frame")
 x = meshio.read(sorted((case / "vtk").glob("frame_*.vtu"))[-1]).points * 1e3
 face = 30 - 1e3 * stroke
 wall = x[np.hypot(x[:, 0], x[:, 1]) > 14.5, 2]

@@ -53,3 +53,11 @@ fz = sum(float(row["floor.fz"]) for row in r[1:200]) / 199
 # it converges at first order (2.4 % below at 0.625 mm, measured 2026-12-02)
 rkcase.check(abs(fx / fz / 0.05 - 1) < 0.1 and fx < 0.1 * force,
              f"hybrid: the mean friction {fx:.3f} N is mu times the mean normal force {fz:.3f} N, far below m k A")
+
+# Above the dies' default CFL the shear factor is warned (its faces' stick stops their sliding one step at
+# a time), Coulomb friction alone is not (its elastic stick holds at any step: sliding_block.py).
+p = tools.solve(case, 1, sets=["time.end=1e-6", "time.cfl=0.9"])
+rkcase.check("warning: time.cfl = 0.9 above the dies' default 0.5 with the shear factor on die 'floor'" in p.stderr,
+             "the shear factor at time.cfl=0.9: warned")
+p = tools.solve(case, 1, sets=["time.end=1e-6", "time.cfl=0.9", "dies[0].shear_factor=0", "dies[0].friction=0.3"])
+rkcase.check("warning: time.cfl" not in p.stderr, "Coulomb friction at time.cfl=0.9: not warned")

@@ -2,9 +2,10 @@
 // - the penalty stiffness k = s m / dt^2 and force k d n (its spring's energy k d^2 / 2 is the work
 //   of that force over the depth: checked by the trapezoid rule on a linear force, exact);
 // - the tangential relative velocity is orthogonal to the normal and leaves the normal part out;
-// - Coulomb: below mu f_n the slave sticks with the stick force, above it slips with mu f_n, both
-//   against v_t; the force's magnitude is min(f_s, mu f_n) for every ratio; no force with mu = 0
-//   or without sliding; the friction's power -f . v_t is never negative (it only dissipates).
+// - Coulomb with an elastic stick: the force grows as k times the slip while under mu f_n, then
+//   slips at mu f_n, against v_t; the friction's work is the spring's energy plus mu f_n over the
+//   slip beyond the spring's; sliding back unloads the spring first; the carried force leaves its
+//   normal part and is capped by a falling mu f_n; no force with mu = 0 or without sliding and load.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -40,28 +41,52 @@ TEST(ContactLaws, TangentialVelocityDropsTheNormalPart) {
   EXPECT_NEAR(norm * norm, 1 + 4 + 9 - vn * vn, 1e-13);
 }
 
-TEST(ContactLaws, CoulombSticksBelowMuFnAndSlipsAbove) {
-  const double n[3] = {0, 0, 1}, v[3] = {3.0, -4.0, 7.0};
-  double vt[3], f[3];
-  const double vt_norm = rk::tangential_velocity(v, n, vt);  // (3, -4, 0), 5
-  ASSERT_DOUBLE_EQ(vt_norm, 5.0);
-  const double fn = 100.0;
-  for (double stick : {1.0, 10.0, 29.9, 30.1, 80.0, 1e6}) {  // mu f_n = 30
-    rk::coulomb_friction(0.3, fn, stick, vt, vt_norm, f);
-    const double expected = std::min(stick, 0.3 * fn);  // stick below, slip above
-    EXPECT_NEAR(std::hypot(f[0], f[1], f[2]), expected, 1e-12 * expected) << "stick force " << stick;
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(f[i], -expected * vt[i] / 5.0, 1e-12 * expected);
-    EXPECT_GT(-(f[0] * vt[0] + f[1] * vt[1] + f[2] * vt[2]), 0.0);  // dissipates
+TEST(ContactLaws, CoulombsStickLoadsWithTheSlipUpToMuFnThenSlips) {
+  const double n[3] = {0, 0, 1}, v[3] = {3.0, -4.0, 7.0}, none[3] = {0, 0, 0};
+  double vt[3];
+  ASSERT_DOUBLE_EQ(rk::tangential_velocity(v, n, vt), 5.0);  // (3, -4, 0)
+  const double mu = 0.3, fn = 100.0, k = 1e3, dt = 1e-3;  // mu f_n = 30; each step slides 5 mm: k dt |v_t| = 5 N
+  double f[3] = {0, 0, 0}, slid = 0, work = 0;
+  for (int step = 1; step <= 8; ++step) {
+    double next[3];
+    rk::coulomb_friction(mu, fn, k, f, n, vt, dt, next);
+    slid += 5e-3;
+    const double magnitude = std::hypot(next[0], next[1], next[2]);
+    // stuck: the spring's force k times the slip so far (6 steps reach mu f_n); then it slips at mu f_n
+    EXPECT_NEAR(magnitude, std::min(k * slid, mu * fn), 1e-12) << "step " << step;
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(next[i], -magnitude * vt[i] / 5.0, 1e-12) << "against the sliding";
+    work -= dt * (next[0] * vt[0] + next[1] * vt[1] + next[2] * vt[2]);
+    for (int i = 0; i < 3; ++i) f[i] = next[i];
   }
+  // what the friction took: the spring's energy at mu f_n plus mu f_n over the slip beyond the spring's
+  const double stuck_slip = mu * fn / k;
+  EXPECT_NEAR(work, rk::stick_energy(f, k) + mu * fn * (slid - stuck_slip) + 0.5 * 5.0 * 30e-3, 1e-9)
+      << "the trapezoid's excess over the loading steps: 6 steps of 5 N x 5 mm / 2";
+  EXPECT_DOUBLE_EQ(rk::stick_energy(f, k), 30.0 * 30.0 / 2e3);
+  // sliding back, the spring unloads first: elastic, the force falls by k dt |v_t| a step
+  const double back[3] = {-vt[0], -vt[1], -vt[2]};
+  double after[3];
+  rk::coulomb_friction(mu, fn, k, f, n, back, dt, after);
+  EXPECT_NEAR(std::hypot(after[0], after[1], after[2]), 25.0, 1e-12);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(after[i], f[i] * 25.0 / 30.0, 1e-12);
+  // the last force's part along the normal is not carried (the tangent plane it acts in); at rest it holds
+  const double tilted[3] = {1.0, 2.0, 7.0};
+  rk::coulomb_friction(mu, fn, k, tilted, n, none, dt, after);
+  EXPECT_DOUBLE_EQ(after[0], 1.0);
+  EXPECT_DOUBLE_EQ(after[1], 2.0);
+  EXPECT_DOUBLE_EQ(after[2], 0.0);
+  // a lower normal force caps a carried force at the new mu f_n, in its direction
+  rk::coulomb_friction(mu, 10.0, k, f, n, none, dt, after);
+  EXPECT_NEAR(std::hypot(after[0], after[1], after[2]), 3.0, 1e-12);
 }
 
 TEST(ContactLaws, NoFrictionWithoutMuOrSliding) {
-  const double vt[3] = {1, 0, 0}, rest[3] = {0, 0, 0};
+  const double vt[3] = {1, 0, 0}, rest[3] = {0, 0, 0}, n[3] = {0, 0, 1}, carried[3] = {5, 0, 0};
   double f[3] = {7, 7, 7};
-  rk::coulomb_friction(0.0, 100.0, 50.0, vt, 1.0, f);
+  rk::coulomb_friction(0.0, 100.0, 1e3, carried, n, vt, 1e-3, f);
   for (double fi : f) EXPECT_EQ(fi, 0.0);
   f[0] = f[1] = f[2] = 7;
-  rk::coulomb_friction(0.5, 100.0, 0.0, rest, 0.0, f);
+  rk::coulomb_friction(0.5, 100.0, 1e3, rest, n, rest, 1e-3, f);
   for (double fi : f) EXPECT_EQ(fi, 0.0);
 }
 

@@ -14,13 +14,15 @@
 //   exactly the particles and points the shift carries past it, with k times their depth along +x,
 //   whichever sign the scene gives the plane's normal.
 // - Coulomb friction on the same lifted billet (the die's face is the plane z = 10 mm, normal -z),
-//   closed forms per slave with the normal force f_n = k d and the stick force m |v_t| / dt that
-//   stops the relative tangential velocity v_t in one step (half of it at an integration point):
-//   below mu f_n every slave sticks and the total is -sum c m v_t / dt (c = 1 particles, 1/2 points),
-//   whatever mu; above it every slave slips with mu f_n against the sliding direction, so the total
-//   tangential force is mu |F_z| along -v_t; a die sliding over material at rest drags it along its
-//   own motion; the friction work over a step is dt |F_t| times the mean sliding speed (>= 0), for
-//   either sliding direction.
+//   closed forms per slave with the normal force f_n = k d and the elastic stick of the same k loaded
+//   by the slip v_t dt of each step: below mu f_n every slave sticks and the total is
+//   -k dt v_t summed, twice that after a second step of the same slip, whatever mu; above it every
+//   slave slips with mu f_n against the sliding direction, so the total tangential force is mu |F_z|
+//   along -v_t; a die sliding over material at rest drags it along its own motion; sliding on at
+//   mu f_n the friction work over a step is dt |F_t| times the sliding speed (>= 0), for either
+//   direction, and a stick that only loads its spring dissipates nothing.
+// - The sticks carried to another contact on the same slaves (a reference update's, a restart's)
+//   load on exactly as if never moved; a stick naming a particle this rank does not hold is refused.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -28,6 +30,7 @@
 
 #include "contact/die_contact.hpp"
 #include "die_surface.hpp"
+#include "error.hpp"
 #include "material_above.hpp"
 #include "model.hpp"
 #include "scene.hpp"
@@ -194,11 +197,11 @@ TEST(DieContact, SymmetryPlanesHoldTheMaterialThatCrossesThem) {
 
 // The billet lifted 0.8 mm into the die with every coefficient at velocity v (the field is v
 // everywhere: the rows sum to one), for the friction tests: the slaves in contact with their
-// depths, masses and the factor c of their stick force (1 at a particle, 1/2 at a point).
+// depths and masses.
 struct Lifted {
   static constexpr double lift = 0.8e-3, top = 10e-3, dt = 1e-7;
   struct Slave {
-    double depth, mass, c;
+    double depth, mass;
   };
   std::vector<Slave> slaves;
   double depth_min = 1e300, depth_max = 0;
@@ -206,10 +209,10 @@ struct Lifted {
   explicit Lifted(const Upsetting& u) {
     const rk::Model& md = u.md;
     for (std::size_t I = 0; I < md.n; ++I)
-      if (md.X[3 * I + 2] + lift > top) slaves.push_back({md.X[3 * I + 2] + lift - top, md.mass[I], 1.0});
+      if (md.X[3 * I + 2] + lift > top) slaves.push_back({md.X[3 * I + 2] + lift - top, md.mass[I]});
     for (std::size_t g = 0; g < md.m; ++g)
       if (md.point_X[3 * g + 2] + lift > top)
-        slaves.push_back({md.point_X[3 * g + 2] + lift - top, md.material_at(g).density * md.weight[g], 0.5});
+        slaves.push_back({md.point_X[3 * g + 2] + lift - top, md.material_at(g).density * md.weight[g]});
     for (const auto& s : slaves) depth_min = std::min(depth_min, s.depth), depth_max = std::max(depth_max, s.depth);
   }
   static rk::State state(const rk::Model& md, const double v[3]) {
@@ -219,10 +222,10 @@ struct Lifted {
       for (int i = 0; i < 3; ++i) st.u[3 * I + i] = i == 2 ? lift : 0.0, st.v[3 * I + i] = v[i];
     return st;
   }
-  // sum over the slaves of m c: the stick force per unit sliding speed is this / dt
-  double stick_mass() const {
+  // sum over the slaves of k dt = s m / dt: the stick's force per unit sliding speed after one step
+  double stick_rate(double penalty_scale) const {
     double sum = 0;
-    for (const auto& s : slaves) sum += s.c * s.mass;
+    for (const auto& s : slaves) sum += penalty_scale * s.mass / dt;
     return sum;
   }
   double normal_force(double penalty_scale) const {
@@ -238,38 +241,44 @@ rk::Scene with_friction(const Upsetting& u, double mu) {
   return scene;
 }
 
-TEST(DieContact, FrictionSticksWhenTheStickForceIsWithinMuFn) {
+TEST(DieContact, FrictionsStickLoadsWithTheSlipWithinMuFn) {
   const Upsetting u;
   const Lifted lifted(u);
   const double mu = 0.12, s = u.scene.contact.penalty_scale, dt = Lifted::dt;
   ASSERT_GT(lifted.depth_min, 0.0);
-  // a slave sticks when c m v / dt <= mu s m d / dt^2, i.e. v <= mu s d / (c dt): half the smallest
-  const double vx = 0.5 * mu * s * lifted.depth_min / dt;
+  // a slave sticks while k (slip) <= mu k d, i.e. while it has slid under mu d: two steps of a
+  // quarter of the shallowest's
+  const double vx = 0.25 * mu * lifted.depth_min / dt;
   const double v[3] = {vx, 0, 0};
   const rk::State st = Lifted::state(u.md, v);
-  const double expected = -lifted.stick_mass() * vx / dt;
+  const double expected = -lifted.stick_rate(s) * vx;
   for (double m : {mu, 0.5}) {  // stuck: the force does not depend on mu
     rk::DieContact contact(u.md, with_friction(u, m), u.dies);
-    contact.compute(u.md, st, 0.0, dt, dt);
-    const rk::DieTotals& tot = contact.totals()[0];
-    ASSERT_EQ(std::size_t(tot.contacts + tot.point_contacts), lifted.slaves.size());
-    EXPECT_NEAR(tot.force[2] / -lifted.normal_force(s), 1.0, 1e-9) << "the normal force is unchanged";
-    EXPECT_NEAR(tot.force[0] / expected, 1.0, 1e-9) << "mu " << m << ": stick stops the sliding in one step";
-    EXPECT_NEAR(tot.force[1], 0.0, 1e-9 * std::abs(expected));
-    EXPECT_LT(std::abs(tot.force[0]), m * std::abs(tot.force[2])) << "within the friction cone";
+    for (int step = 1; step <= 2; ++step) {
+      contact.compute(u.md, st, 0.0, dt, dt);
+      const rk::DieTotals& tot = contact.totals()[0];
+      ASSERT_EQ(std::size_t(tot.contacts + tot.point_contacts), lifted.slaves.size());
+      EXPECT_NEAR(tot.force[2] / -lifted.normal_force(s), 1.0, 1e-9) << "the normal force is unchanged";
+      EXPECT_NEAR(tot.force[0] / (step * expected), 1.0, 1e-9) << "mu " << m << ", step " << step << ": k times the slip so far";
+      EXPECT_NEAR(tot.force[1], 0.0, 1e-9 * std::abs(expected));
+      EXPECT_LT(std::abs(tot.force[0]), m * std::abs(tot.force[2])) << "within the friction cone";
+    }
   }
   rk::DieContact frictionless(u.md, u.scene, u.dies);  // the scene's mu = 0: no tangential force
   frictionless.compute(u.md, st, 0.0, dt, dt);
   EXPECT_EQ(frictionless.totals()[0].force[0], 0.0);
   EXPECT_EQ(frictionless.totals()[0].force[1], 0.0);
+  EXPECT_TRUE(frictionless.stick_rows().empty());
 }
+
+// every slave slips in its first step when k dt v > mu k d for the deepest: 4x that
+double slipping_speed(const Lifted& lifted, double mu) { return 4 * mu * lifted.depth_max / Lifted::dt; }
 
 TEST(DieContact, FrictionSlipsAtMuFnAgainstTheSlidingDirection) {
   const Upsetting u;
   const Lifted lifted(u);
   const double mu = 0.12, s = u.scene.contact.penalty_scale, dt = Lifted::dt;
-  // every slave slips when c m v / dt > mu s m d / dt^2 for the deepest slave and c = 1/2: 4x that
-  const double speed = 4 * mu * s * lifted.depth_max / (0.5 * dt);
+  const double speed = slipping_speed(lifted, mu);
   const double dir[3] = {0.6, -0.8, 0};  // a sliding direction off the axes
   const double v[3] = {speed * dir[0], speed * dir[1], 0};
   const rk::State st = Lifted::state(u.md, v);
@@ -281,7 +290,7 @@ TEST(DieContact, FrictionSlipsAtMuFnAgainstTheSlidingDirection) {
   EXPECT_NEAR(tot.force[2] / -fn, 1.0, 1e-9);
   for (int i = 0; i < 2; ++i)
     EXPECT_NEAR(tot.force[i] / (-mu * fn * dir[i]), 1.0, 1e-9) << "component " << i << ": mu f_n against v_t";
-  EXPECT_LT(mu * fn, lifted.stick_mass() * speed / dt) << "below what sticking would take";
+  EXPECT_LT(mu * fn, lifted.stick_rate(s) * speed) << "below what the stick would take";
 }
 
 TEST(DieContact, ADieSlidingOverMaterialAtRestDragsItAlong) {
@@ -289,7 +298,7 @@ TEST(DieContact, ADieSlidingOverMaterialAtRestDragsItAlong) {
   const Lifted lifted(u);
   const double mu = 0.12, s = u.scene.contact.penalty_scale, dt = Lifted::dt;
   rk::Scene scene = with_friction(u, mu);
-  const double speed = 4 * mu * s * lifted.depth_max / (0.5 * dt);  // slip everywhere, as above
+  const double speed = slipping_speed(lifted, mu);  // slip everywhere, as above
   scene.dies[0].motion = rk::DieMotion{{0, 1, 0}, speed, {}};  // the die moves along +y over its own face's plane
   const double rest[3] = {0, 0, 0};
   const rk::State st = Lifted::state(u.md, rest);
@@ -302,30 +311,59 @@ TEST(DieContact, ADieSlidingOverMaterialAtRestDragsItAlong) {
   EXPECT_NEAR(tot.force[0], 0.0, 1e-9 * fn);
 }
 
-TEST(DieContact, FrictionWorkIsTheForceTimesTheMeanSlidingSpeed) {
+TEST(DieContact, FrictionWorkIsTheForceTimesTheSlidingSpeedAndTheStickStoresItsLoad) {
   const Upsetting u;
   const Lifted lifted(u);
-  const double mu = 0.12, s = u.scene.contact.penalty_scale, dt = Lifted::dt;
-  const double slip = 4 * mu * s * lifted.depth_max / (0.5 * dt), stick = 0.5 * mu * s * lifted.depth_min / dt;
-  for (double sign : {1.0, -1.0})
-    for (double speed : {slip, stick}) {
-      const double v[3] = {sign * speed, 0, 0};
-      rk::State st = Lifted::state(u.md, v);
-      rk::DieContact contact(u.md, with_friction(u, mu), u.dies);
-      contact.compute(u.md, st, 0.0, dt, dt);
-      const double ft = std::abs(contact.totals()[0].force[0]);
-      ASSERT_GT(ft, 0.0);
-      // still sliding at the same speed after the step: the work is dt |F_t| v
-      const std::vector<double> v_old = st.v;
-      contact.account(u.md, st, v_old, dt, 0.0);
-      const double w1 = contact.totals()[0].friction_work;
-      EXPECT_GE(w1, 0.0);
-      EXPECT_NEAR(w1 / (dt * ft * speed), 1.0, 1e-9) << "sign " << sign << ", speed " << speed;
-      // the sliding stopped by the end of the step: the mean speed is half, and so is the work
-      for (std::size_t k = 0; k < st.v.size(); k += 3) st.v[k] = 0;
-      contact.account(u.md, st, v_old, dt, 0.0);
-      EXPECT_NEAR((contact.totals()[0].friction_work - w1) / (0.5 * dt * ft * speed), 1.0, 1e-9);
-    }
+  const double mu = 0.12, dt = Lifted::dt;
+  for (double sign : {1.0, -1.0}) {
+    // sliding on at mu f_n (the second step: the stick already at the cap): the work is dt |F_t| v
+    const double slip = slipping_speed(lifted, mu), v[3] = {sign * slip, 0, 0};
+    rk::State st = Lifted::state(u.md, v);
+    rk::DieContact contact(u.md, with_friction(u, mu), u.dies);
+    contact.compute(u.md, st, 0.0, dt, dt);
+    contact.compute(u.md, st, 0.0, dt, dt);
+    const double ft = std::abs(contact.totals()[0].force[0]);
+    ASSERT_GT(ft, 0.0);
+    contact.account(u.md, st, st.v, dt, 0.0);
+    EXPECT_GE(contact.totals()[0].friction_work, 0.0);
+    EXPECT_NEAR(contact.totals()[0].friction_work / (dt * ft * slip), 1.0, 1e-9) << "sign " << sign;
+    // a stick loaded in one step by sliding that stopped by the step's end (its mean speed half): the
+    // work dt |F_t| v / 2 = k dt^2 v^2 / 2 is what its spring now holds, and nothing is dissipated
+    const double stick = 0.5 * mu * lifted.depth_min / dt, w[3] = {sign * stick, 0, 0};
+    rk::State stuck = Lifted::state(u.md, w);
+    rk::DieContact held(u.md, with_friction(u, mu), u.dies);
+    held.compute(u.md, stuck, 0.0, dt, dt);
+    const std::vector<double> v_old = stuck.v;
+    for (std::size_t k = 0; k < stuck.v.size(); k += 3) stuck.v[k] = 0;
+    held.account(u.md, stuck, v_old, dt, 0.0);
+    const double work = 0.5 * dt * std::abs(held.totals()[0].force[0]) * stick;
+    EXPECT_NEAR(held.totals()[0].friction_work / work, 0.0, 1e-9) << "sign " << sign;
+  }
+}
+
+TEST(DieContact, CarriedSticksLoadOnAsIfNeverMoved) {
+  const Upsetting u;
+  const Lifted lifted(u);
+  const double mu = 0.12, dt = Lifted::dt;
+  const double v[3] = {0.2 * mu * lifted.depth_min / dt, 0.1 * mu * lifted.depth_min / dt, 0};
+  const rk::State st = Lifted::state(u.md, v);
+  rk::DieContact first(u.md, with_friction(u, mu), u.dies), second(u.md, with_friction(u, mu), u.dies);
+  first.compute(u.md, st, 0.0, dt, dt);
+  const std::vector<double> rows = first.stick_rows();
+  ASSERT_EQ(rows.size(), rk::DieContact::kStickValues * lifted.slaves.size());
+  second.set_stick_rows(u.md, rows, "test");
+  first.compute(u.md, st, 0.0, dt, dt);
+  second.compute(u.md, st, 0.0, dt, dt);
+  EXPECT_EQ(first.stick_rows(), second.stick_rows());
+  EXPECT_EQ(first.totals()[0].force[0], second.totals()[0].force[0]);
+  std::vector<double> bad = rows;
+  bad[0] = 1e9;  // a particle no rank holds
+  try {
+    second.set_stick_rows(u.md, bad, "rank_0000.h5");
+    ADD_FAILURE() << "a stick on a particle this rank does not hold was taken";
+  } catch (const rk::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("rank_0000.h5: a friction stick names particle 1000000000"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
