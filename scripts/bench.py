@@ -148,12 +148,12 @@ def paper_case(a, machine, sets=(), case=None):
 
 # (label, scene, spacing (m), time.end (s), settings): the start of each forming case, 5-14 s each (2026-12-04,
 # beside other work); a row "the same, ..." runs the case above it at time.cfl=0.9, where the contact keeps its
-# stiffness (docs/decisions.md, "Contact laws"): the speed that CFL buys, and what it moves the die's work by
-# (the frictionless wheel's holds; the back extrusion's friction drifts with the step)
+# stiffness and Coulomb friction its elastic stick (docs/decisions.md, "Contact laws"): the speed that CFL
+# buys, and what it moves the die's work by
 FORMING = [("upsetting, power law, 1.25 mm", "upsetting/scene.yaml", "1.25e-3", "1.0e-3", ()),
            ("hot upsetting, Hansel-Spittel and heat, 2.5 mm", "upsetting/scene_hot.yaml", "2.5e-3", "0.2", ()),
            ("back extrusion, contact and reference updates, 2.5 mm", "back_extrusion/scene.yaml", "2.5e-3", "0.15e-3", ()),
-           ("the same, time.cfl=0.9 (friction: the answer drifts)", "back_extrusion/scene.yaml", "2.5e-3", "0.15e-3",
+           ("the same, time.cfl=0.9", "back_extrusion/scene.yaml", "2.5e-3", "0.15e-3",
             ("time.cfl=0.9",)),
            ("wheel forging, frictionless, 2.5 mm", "wheel_forging/scene.yaml", "2.5e-3", "0.5e-3", ()),
            ("the same, time.cfl=0.9", "wheel_forging/scene.yaml", "2.5e-3", "0.5e-3", ("time.cfl=0.9",))]

@@ -228,8 +228,17 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
         std::copy(touched.begin() + std::ptrdiff_t(first[std::size_t(j)]), touched.begin() + std::ptrdiff_t(first[std::size_t(j) + 1]),
                   contact.touched().begin() + std::ptrdiff_t(contact.triangle0(k)));
   }
-  if (!stage)  // Coulomb friction's sticks (a stage's dies start without)
-    contact.set_stick_rows(md, f.read<double>("dies/sticks", DieContact::kStickValues), path);
+  {  // Coulomb friction's sticks; in a stage, those on the dies that continue, renumbered as this stage's
+    const std::size_t cols = DieContact::kStickValues;
+    std::vector<double> rows = f.read<double>("dies/sticks", cols), kept;
+    for (std::size_t r = 0; r + cols <= rows.size(); r += cols) {
+      const auto k = std::find(written.begin(), written.begin() + std::ptrdiff_t(own), int(rows[r + 1])) - written.begin();
+      if (std::size_t(k) == own) continue;  // its die does not continue
+      rows[r + 1] = double(k);
+      kept.insert(kept.end(), rows.begin() + std::ptrdiff_t(r), rows.begin() + std::ptrdiff_t(r + cols));
+    }
+    contact.set_stick_rows(md, kept, path);
+  }
   if (f.exists("dies/rams") && !stage) {  // the rams of the dies driven by their press
     const auto rows = f.read<double>("dies/rams", State::kRamValues);
     st.rams.resize(rows.size() / State::kRamValues);
