@@ -601,17 +601,6 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
       if (comm.rank() == 0) std::fprintf(stderr, "rksolve: warning: %s\n", text);
     }
   }
-  for (const Die& d : scene_.dies)  // (docs/decisions.md, "CFL default: 0.9 without dies, 0.5 with dies")
-    if (d.shear_factor > 0 && scene_.time.cfl > scene_.default_cfl()) {
-      char text[400];
-      std::snprintf(text, sizeof text, "time.cfl = %g above the dies' default %g with the shear factor on die '%s': "
-                    "its faces' stick stops their sliding one step at a time, so where they stick they slip more as the "
-                    "step grows (Coulomb friction's elastic stick holds at any step)",
-                    scene_.time.cfl, scene_.default_cfl(), d.name.c_str());
-      start_warnings_.push_back(text);
-      if (comm.rank() == 0) std::fprintf(stderr, "rksolve: warning: %s\n", text);
-      break;
-    }
   comm.min(&dt0, 1);
   if (scene_.time.mass_scaling_dt > dt0) {  // quasi-static forming: scale the density up
     const double factor = std::pow(scene_.time.mass_scaling_dt / dt0, 2);

@@ -12,7 +12,8 @@
 //   codes); its stiffness held like the normal's, a stuck slave's slip does not grow with the step.
 //   The spring stores |f_t|^2 / (2 k).
 // - The shear factor and hybrid laws of hot forging (tau = m k, tau = min(mu p, m k)) act on the part's
-//   boundary faces (contact/die_contact.cpp) with the flow stress and pressure of the face's cell.
+//   boundary faces (contact/die_contact.cpp) with the flow stress and pressure of the face's cell, through
+//   the same elastic stick (its k from the face's mass) capped at tau A.
 // Pure functions, unit-tested without particles or MPI (tests/unit/test_contact_laws.cpp).
 #pragma once
 #include <algorithm>
@@ -39,31 +40,28 @@ inline double tangential_velocity(const double v_rel[3], const double normal[3],
   return std::sqrt(vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]);
 }
 
-// A friction force: min(f_stick, c x) against the sliding direction v_t / |v_t| (c x: mu f_n, or tau A);
-// zero when c = 0 or nothing slides.
-inline void sliding_friction(double c, double x, double stick_force, const double vt[3], double vt_norm, double f[3]) {
+// Friction with an elastic stick: a tangential spring of the normal's stiffness k between the slave and
+// the point of the obstacle it stuck to, its force capped at c (mu f_n for Coulomb, tau A for the shear
+// factor's laws). The last step's friction force f_old, its part in the tangent plane of the normal n,
+// is loaded by the step's tangential slip v_t dt into the trial force f* = f_old,t - k dt v_t; the slave
+// sticks (f = f*) while |f*| <= c and slips with f = c f* / |f*| otherwise. A stuck slave slides at most
+// c / k whatever the step (mu d for Coulomb, d its penetration), where a stick force that stops the
+// sliding in one step leaks a slip that grows with the step. Zero when c = 0.
+inline void stick_friction(double cap, double k, const double f_old[3], const double normal[3], const double vt[3],
+                           double dt, double f[3]) {
   f[0] = f[1] = f[2] = 0;
-  if (!(c > 0 && vt_norm > 0)) return;
-  const double magnitude = std::min(stick_force, c * x);
-  for (int i = 0; i < 3; ++i) f[i] = -magnitude * vt[i] / vt_norm;
-}
-
-// Coulomb friction with an elastic stick: a tangential spring of the normal's stiffness k between the
-// slave and the point of the obstacle it stuck to. The last step's friction force f_old, its part in
-// the tangent plane of the normal n, is loaded by the step's tangential slip v_t dt into the trial
-// force f* = f_old,t - k dt v_t; the slave sticks (f = f*) while |f*| <= mu f_n and slips with
-// f = mu f_n f* / |f*| otherwise. A stuck slave slides at most mu f_n / k = mu d (d its penetration)
-// whatever the step, where a stick force that stops the sliding in one step leaks a slip that grows
-// with the step. Zero when mu = 0.
-inline void coulomb_friction(double mu, double normal_force, double k, const double f_old[3], const double normal[3],
-                             const double vt[3], double dt, double f[3]) {
-  f[0] = f[1] = f[2] = 0;
-  if (!(mu > 0)) return;
+  if (!(cap > 0)) return;
   const double on_normal = f_old[0] * normal[0] + f_old[1] * normal[1] + f_old[2] * normal[2];
   for (int i = 0; i < 3; ++i) f[i] = f_old[i] - on_normal * normal[i] - k * dt * vt[i];
-  const double trial = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]), cap = mu * normal_force;
+  const double trial = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
   if (trial > cap)
     for (int i = 0; i < 3; ++i) f[i] *= cap / trial;
+}
+
+// Coulomb friction: the elastic stick capped at mu f_n.
+inline void coulomb_friction(double mu, double normal_force, double k, const double f_old[3], const double normal[3],
+                             const double vt[3], double dt, double f[3]) {
+  stick_friction(mu > 0 ? mu * normal_force : 0.0, k, f_old, normal, vt, dt, f);
 }
 
 // The energy an elastic stick of stiffness k stores at its force f: |f|^2 / (2 k) (J).
@@ -78,10 +76,10 @@ inline double hybrid_friction_stress(double mu, double pressure, double m, doubl
   return std::min(mu * std::max(pressure, 0.0), shear_factor_stress(m, flow_stress));
 }
 
-// The friction force of a stress tau over an area A: min(f_stick, tau A) against the sliding direction.
-inline void interface_friction(double tau, double area, double stick_force, const double vt[3], double vt_norm,
-                               double f[3]) {
-  sliding_friction(tau, area, stick_force, vt, vt_norm, f);
+// The friction force of a stress tau over an area A: the elastic stick capped at tau A.
+inline void interface_friction(double tau, double area, double k, const double f_old[3], const double normal[3],
+                               const double vt[3], double dt, double f[3]) {
+  stick_friction(tau * area, k, f_old, normal, vt, dt, f);
 }
 
 }  // namespace rk

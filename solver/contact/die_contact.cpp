@@ -92,6 +92,7 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
         face_mass_[f] += md.mass[I] / double(count[I]);
       }
     face_active_.reserve(faces);
+    face_sticks_.reserve(faces), last_face_sticks_.reserve(faces);
     face_N_sum_.assign(faces, 0.0);
     for (std::size_t f = 0; f < faces; ++f)
       for (auto k = md.surface_face_offsets[f]; k < md.surface_face_offsets[f + 1]; ++k) {
@@ -145,6 +146,8 @@ std::vector<double> DieContact::stick_rows() const {
     const double slave = s < particles_.size() ? double(particle_ids_[s]) : -double(s - particles_.size() + 1);
     rows.insert(rows.end(), {slave, double(k.obstacle), k.force[0], k.force[1], k.force[2]});
   }
+  for (const Stick& k : face_sticks_)  // a face's: its index, its die as -(k + 1)
+    rows.insert(rows.end(), {double(k.slave), -double(k.obstacle + 1), k.force[0], k.force[1], k.force[2]});
   return rows;
 }
 
@@ -152,9 +155,16 @@ void DieContact::set_stick_rows(const Model& md, const std::vector<double>& rows
   std::vector<std::pair<std::int64_t, std::int32_t>> by_id;  // owned particle's global id -> its slave
   for (std::size_t s = 0; s < particles_.size(); ++s) by_id.emplace_back(particle_ids_[s], std::int32_t(s));
   std::sort(by_id.begin(), by_id.end());
-  sticks_.clear();
+  sticks_.clear(), face_sticks_.clear();
   for (std::size_t r = 0; r + kStickValues <= rows.size(); r += kStickValues) {
     const double key = rows[r], die = rows[r + 1];
+    if (die < 0) {  // a boundary face's, on die -die - 1
+      if (!(key >= 0 && key < double(face_mass_.size()) && -die - 1 < double(dies_.size()) && dies_[std::size_t(-die - 1)].shear_factor > 0))
+        throw Error(source + ": a friction stick names boundary face " + std::to_string(std::int64_t(key)) + " on die " +
+                    std::to_string(std::int64_t(-die - 1)) + ", which this rank's contact does not hold");
+      face_sticks_.push_back({std::int32_t(key), std::int32_t(-die - 1), {rows[r + 2], rows[r + 3], rows[r + 4]}});
+      continue;
+    }
     std::int64_t slave = -1;
     if (key >= 0) {
       const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::make_pair(std::int64_t(key), std::int32_t(-1)));
@@ -171,6 +181,7 @@ void DieContact::set_stick_rows(const Model& md, const std::vector<double>& rows
   std::sort(sticks_.begin(), sticks_.end(), [](const Stick& a, const Stick& b) {
     return a.obstacle != b.obstacle ? a.obstacle < b.obstacle : a.slave < b.slave;
   });
+  std::sort(face_sticks_.begin(), face_sticks_.end(), [](const Stick& a, const Stick& b) { return a.slave < b.slave; });
 }
 
 double DieContact::compute(const Model& md, const State& st, double t, double dt, double dt_min) {
@@ -293,7 +304,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
       }
     }
   }
-  if (shear_) face_friction(md, st, t, dt, largest);
+  if (shear_) face_friction(md, st, t, dt, dt_min, largest);
   return largest;
 }
 
@@ -304,8 +315,11 @@ void DieContact::face_velocity(const Model& md, const std::vector<double>& v, st
     for (int i = 0; i < 3; ++i) out[i] += v[3 * std::size_t(md.surface_face_nodes[std::size_t(k)]) + i] / n;
 }
 
-void DieContact::face_friction(const Model& md, const State& st, double t, double dt, double& largest) {
+void DieContact::face_friction(const Model& md, const State& st, double t, double dt, double dt_min, double& largest) {
   face_active_.clear();
+  face_sticks_.swap(last_face_sticks_);  // the last step's, in face order as the loop below meets them
+  face_sticks_.clear();
+  std::size_t held = 0;                  // the first of them not before this face
   const std::size_t faces = face_mass_.size();
   for (std::size_t f = 0; f < faces; ++f) {
     const int n = md.surface_face_offsets[f + 1] - md.surface_face_offsets[f];
@@ -340,10 +354,19 @@ void DieContact::face_friction(const Model& md, const State& st, double t, doubl
       double v_rel[3], vt[3];
       face_velocity(md, st.v, f, v_rel);
       for (int i = 0; i < 3; ++i) v_rel[i] -= rate * die.motion.direction[i];
-      const double vt_norm = tangential_velocity(v_rel, hit.normal, vt);
-      FaceFriction ff{std::int32_t(f), std::int32_t(k), {}, hit.triangle};
+      tangential_velocity(v_rel, hit.normal, vt);
+      FaceFriction ff{std::int32_t(f), std::int32_t(k), {}, hit.triangle, 0.0};
       touched_[triangle0_[k] + std::size_t(hit.triangle)] = 1;
-      interface_friction(tau, area, face_mass_[f] * vt_norm / dt, vt, vt_norm, ff.force);
+      // the elastic stick carried from the last step on this die (a face meets one die at a time)
+      static constexpr double kNone[3] = {0, 0, 0};
+      while (held < last_face_sticks_.size() && std::size_t(last_face_sticks_[held].slave) < f) ++held;
+      const bool carried = held < last_face_sticks_.size() && std::size_t(last_face_sticks_[held].slave) == f &&
+                           std::size_t(last_face_sticks_[held].obstacle) == k;
+      const double* f_old = carried ? last_face_sticks_[held].force : kNone;
+      const double kI = penalty_stiffness(penalty_scale_, face_mass_[f], dt_min, dt);
+      interface_friction(tau, area, kI, f_old, hit.normal, vt, dt, ff.force);
+      ff.stick_stored = stick_energy(ff.force, kI) - stick_energy(f_old, kI);
+      face_sticks_.push_back({std::int32_t(f), std::int32_t(k), {ff.force[0], ff.force[1], ff.force[2]}});
       DieTotals& tot = totals_[k];
       for (int i = 0; i < 3; ++i) {
         tot.force[i] += ff.force[i];
@@ -524,6 +547,7 @@ void DieContact::account(const Model& md, State& st, const std::vector<double>& 
       totals_[std::size_t(ff.die)].press_work += dt_avg * ff.force[i] * die_v;
       friction -= dt_avg * ff.force[i] * (vbar - die_v);
     }
+    friction -= ff.stick_stored;  // what the elastic stick stores is not dissipated
     DieTotals& tot = totals_[std::size_t(ff.die)];
     tot.friction_work += friction;
     if (!conducting || friction == 0) continue;

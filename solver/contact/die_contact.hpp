@@ -112,10 +112,11 @@ class DieContact {
   double symmetry_depth() const;
   std::int32_t deepest_particle(const Model& md) const;
 
-  // Coulomb friction's elastic sticks (contact_laws.hpp): the friction force each slave put on the die
-  // it touched at the last step, which the next step loads further. As rows of kStickValues, a slave
-  // named by its particle's global id (>= 0) or its point's index g as -(g + 1), so that they survive
-  // a reference update (which renumbers the local particles) and a checkpoint.
+  // The friction's elastic sticks (contact_laws.hpp): the friction force each slave (Coulomb) or
+  // boundary face (the shear factor's laws) put on the die it touched at the last step, which the next
+  // step loads further. As rows of kStickValues: a slave named by its particle's global id (>= 0) or its
+  // point's index g as -(g + 1), with its die k; a face by its index, with its die as -(k + 1); so that
+  // they survive a reference update (which renumbers the local particles) and a checkpoint.
   static constexpr std::size_t kStickValues = 5;  // slave, die, force (3)
   std::vector<double> stick_rows() const;
   void set_stick_rows(const Model& md, const std::vector<double>& rows, const std::string& source);
@@ -169,14 +170,16 @@ class DieContact {
   // Shear factor and hybrid friction (dies with shear_factor > 0) on the part's boundary faces of this
   // rank: a face whose centre is within a tenth of its size of such a die (or inside it) slides with
   // the mean velocity of its nodes and takes tau = m k (or min(mu p, m k)) over its area, k and p from
-  // its cell's points, at most the force that stops its sliding in one step (its nodes' masses, each
-  // shared among the node's boundary faces); the force is spread equally over its nodes.
+  // its cell's points, through an elastic stick capped at tau A (its stiffness the penalty's on the
+  // face's mass: its nodes' masses, each shared among the node's boundary faces); the force is spread
+  // equally over its nodes.
   struct FaceFriction {
     std::int32_t face, die;
     double force[3];
     std::int32_t triangle;
+    double stick_stored;  // the energy this step put into its elastic stick (J)
   };
-  void face_friction(const Model& md, const State& st, double t, double dt, double& largest);
+  void face_friction(const Model& md, const State& st, double t, double dt, double dt_min, double& largest);
   void face_velocity(const Model& md, const std::vector<double>& v, std::size_t f, double out[3]) const;
   std::vector<double> face_mass_;  // per boundary face: sum over its nodes of m_I / (the node's face count)
   // per boundary face: the largest sum_J |N_J| of its nodes' rows (its centre moves at most that times
@@ -187,6 +190,7 @@ class DieContact {
   double moved_ = 0;                // the largest coefficient move of this step's compute
   std::vector<double> die_moved_;   // per die: its stroke's change in this step's compute
   std::vector<FaceFriction> face_active_;  // reserved once
+  std::vector<Stick> face_sticks_, last_face_sticks_;  // the faces' elastic sticks (slave: the face), in face order
   bool shear_ = false;                     // a die has shear_factor > 0
   std::vector<DieTotals> totals_;
   std::vector<double> die_box_;  // per die at t = 0: lo[3], hi[3]

@@ -232,9 +232,11 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
     const std::size_t cols = DieContact::kStickValues;
     std::vector<double> rows = f.read<double>("dies/sticks", cols), kept;
     for (std::size_t r = 0; r + cols <= rows.size(); r += cols) {
-      const auto k = std::find(written.begin(), written.begin() + std::ptrdiff_t(own), int(rows[r + 1])) - written.begin();
+      const bool face = rows[r + 1] < 0;  // a boundary face's, its die as -(j + 1)
+      const int j = int(face ? -rows[r + 1] - 1 : rows[r + 1]);
+      const auto k = std::find(written.begin(), written.begin() + std::ptrdiff_t(own), j) - written.begin();
       if (std::size_t(k) == own) continue;  // its die does not continue
-      rows[r + 1] = double(k);
+      rows[r + 1] = face ? -double(k + 1) : double(k);
       kept.insert(kept.end(), rows.begin() + std::ptrdiff_t(r), rows.begin() + std::ptrdiff_t(r + cols));
     }
     contact.set_stick_rows(md, kept, path);

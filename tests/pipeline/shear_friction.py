@@ -37,10 +37,17 @@ worst = max(abs(-float(row["floor.fx"]) / force - 1) for row in sliding)
 rkcase.check(worst < 3e-4, f"m = 0.3: the friction force is m k A = {force:.4f} N within {worst:.1e} while it slides")
 rkcase.check(abs(slide[1] / (v0 * t - 0.5 * a * t * t) - 1) < 1e-3, f"slid {1e6 * slide[1]:.3f} um at 30 us (closed form 24.226 um)")
 rkcase.check(abs(speed[1] / (v0 - a * t) - 1) < 1e-3, f"speed {speed[1]:.5f} m/s at 30 us (closed form {v0 - a * t:.5f})")
-rkcase.check(abs(slide[4] / (v0 * v0 / (2 * a)) - 1) < 1.5e-3 and abs(speed[4]) < 1e-3,
-             f"stopped after {1e6 * slide[4]:.3f} um (closed form {1e6 * v0 * v0 / (2 * a):.3f} um)")
+# Stopped, the block rings on its faces' elastic sticks, which hold m k A: at most m k A / sqrt(K M) with
+# K = s M_b / dt^2 (M_b the bottom layer's share of the mass, about M / 9; dt 5e-8 s), about 0.004 m/s,
+# some nanometres; measured -0.0046 m/s at 0.12 ms (2026-12-05; with the one-step stick it was at rest
+# within 1e-3 m/s), bound about twice that
+rkcase.check(abs(slide[4] / (v0 * v0 / (2 * a)) - 1) < 1.5e-3 and abs(speed[4]) < 0.01,
+             f"stopped after {1e6 * slide[4]:.3f} um (closed form {1e6 * v0 * v0 / (2 * a):.3f} um), "
+             f"ringing on its sticks at {speed[4]:.4f} m/s")
 work = float(r[-1]["friction_work"])
-rkcase.check(abs(work / (0.5 * M * v0 * v0) - 1) < 5e-4, f"the friction's work {1e3 * work:.5f} mJ is the kinetic energy 0.675 mJ")
+# measured -6.6e-4 (2026-12-05): the discrete kinetic energy at the start reads 3.4e-4 under M v0^2 / 2, and
+# the stopped block keeps 7e-4 of it as the elastic shear its sticks hold (2.9e-7 J) and their ring (1.8e-7 J)
+rkcase.check(abs(work / (0.5 * M * v0 * v0) - 1) < 1.3e-3, f"the friction's work {1e3 * work:.5f} mJ is the kinetic energy 0.675 mJ")
 
 r = rows(["dies[0].shear_factor=1"])
 first = -float(r[0]["floor.fx"])
@@ -54,10 +61,3 @@ fz = sum(float(row["floor.fz"]) for row in r[1:200]) / 199
 rkcase.check(abs(fx / fz / 0.05 - 1) < 0.1 and fx < 0.1 * force,
              f"hybrid: the mean friction {fx:.3f} N is mu times the mean normal force {fz:.3f} N, far below m k A")
 
-# Above the dies' default CFL the shear factor is warned (its faces' stick stops their sliding one step at
-# a time), Coulomb friction alone is not (its elastic stick holds at any step: sliding_block.py).
-p = tools.solve(case, 1, sets=["time.end=1e-6", "time.cfl=0.9"])
-rkcase.check("warning: time.cfl = 0.9 above the dies' default 0.5 with the shear factor on die 'floor'" in p.stderr,
-             "the shear factor at time.cfl=0.9: warned")
-p = tools.solve(case, 1, sets=["time.end=1e-6", "time.cfl=0.9", "dies[0].shear_factor=0", "dies[0].friction=0.3"])
-rkcase.check("warning: time.cfl" not in p.stderr, "Coulomb friction at time.cfl=0.9: not warned")

@@ -106,17 +106,21 @@ TEST(ShearFriction, ShearFactorAndHybridStressesAreTheForgingLaws) {
   EXPECT_EQ(rk::hybrid_friction_stress(mu, -1e6, m, flow), 0.0);  // a face pulled off its die
 }
 
-TEST(ShearFriction, TheForceIsTauTimesTheAreaAgainstTheSlidingUpToTheStickForce) {
-  const double vt[3] = {3, 4, 0};  // |vt| = 5
+TEST(ShearFriction, TheForceIsTauTimesTheAreaAgainstTheSlidingBeyondTheStick) {
+  const double vt[3] = {3, 4, 0}, n[3] = {0, 0, 1}, none[3] = {0, 0, 0};  // |vt| = 5
   double f[3];
-  rk::interface_friction(2e6, 1e-4, 1e9, vt, 5, f);  // slipping: tau A = 200 N
+  rk::interface_friction(2e6, 1e-4, 1e9, none, n, vt, 1e-3, f);  // slipping: the stick's 5e6 N past tau A = 200 N
   EXPECT_DOUBLE_EQ(f[0], -200 * 0.6);
   EXPECT_DOUBLE_EQ(f[1], -200 * 0.8);
   EXPECT_EQ(f[2], 0);
-  rk::interface_friction(2e6, 1e-4, 50, vt, 5, f);  // sticking: the force that stops it in one step
+  rk::interface_friction(2e6, 1e-4, 1e4, none, n, vt, 1e-3, f);  // sticking: k dt |v_t| = 50 N, the spring's
   EXPECT_DOUBLE_EQ(std::hypot(f[0], f[1]), 50);
-  const double at_rest[3] = {0, 0, 0};
-  rk::interface_friction(2e6, 1e-4, 1e9, at_rest, 0, f);
+  const double carried[3] = {f[0], f[1], f[2]};
+  rk::interface_friction(2e6, 1e-4, 1e4, carried, n, vt, 1e-3, f);  // loaded on: 100 N
+  EXPECT_DOUBLE_EQ(std::hypot(f[0], f[1]), 100);
+  rk::interface_friction(0.0, 1e-4, 1e4, carried, n, vt, 1e-3, f);  // no stress: no force
+  EXPECT_EQ(f[0] * f[0] + f[1] * f[1] + f[2] * f[2], 0);
+  rk::interface_friction(2e6, 1e-4, 1e9, none, n, none, 1e-3, f);
   EXPECT_EQ(f[0] * f[0] + f[1] * f[1] + f[2] * f[2], 0);
 }
 
