@@ -365,9 +365,11 @@ void DieContact::face_friction(const Model& md, const State& st, double t, doubl
       const double* f_old = carried ? last_face_sticks_[held].force : kNone;
       const double kI = penalty_stiffness(penalty_scale_, face_mass_[f], dt_min, dt);
       interface_friction(tau, area, kI, f_old, hit.normal, vt, dt, ff.force);
-      ff.stick_stored = stick_energy(ff.force, kI) - stick_energy(f_old, kI);
+      const double stored = stick_energy(ff.force, kI);
+      ff.stick_stored = stored - stick_energy(f_old, kI);
       face_sticks_.push_back({std::int32_t(f), std::int32_t(k), {ff.force[0], ff.force[1], ff.force[2]}});
       DieTotals& tot = totals_[k];
+      tot.spring_energy += stored;
       for (int i = 0; i < 3; ++i) {
         tot.force[i] += ff.force[i];
         largest = std::max(largest, std::abs(ff.force[i]) / n);
