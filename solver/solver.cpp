@@ -527,7 +527,7 @@ void Simulation::rebind() {
   dies_ = std::make_unique<DieContact>(md_, scene_, md_.dies);
   dies_->totals() = totals;
   dies_->touched() = touched;
-  dies_->set_stick_rows(md_, sticks, "the reference update");
+  dies_->set_stick_rows(sticks, "the reference update");
   parts_ = std::make_unique<PartContact>(md_, scene_, comm_);
   exchange_.emplace(md_, int(kForceStride));
   headroom_ = force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm_);

@@ -151,7 +151,7 @@ std::vector<double> DieContact::stick_rows() const {
   return rows;
 }
 
-void DieContact::set_stick_rows(const Model& md, const std::vector<double>& rows, const std::string& source) {
+void DieContact::set_stick_rows(const std::vector<double>& rows, const std::string& source) {
   std::vector<std::pair<std::int64_t, std::int32_t>> by_id;  // owned particle's global id -> its slave
   for (std::size_t s = 0; s < particles_.size(); ++s) by_id.emplace_back(particle_ids_[s], std::int32_t(s));
   std::sort(by_id.begin(), by_id.end());
@@ -169,7 +169,7 @@ void DieContact::set_stick_rows(const Model& md, const std::vector<double>& rows
     if (key >= 0) {
       const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::make_pair(std::int64_t(key), std::int32_t(-1)));
       if (it != by_id.end() && it->first == std::int64_t(key)) slave = it->second;
-    } else if (-key - 1 < double(md.m)) {
+    } else if (-key - 1 < double(mass_.size() - particles_.size())) {  // a point's
       slave = std::int64_t(particles_.size()) + std::int64_t(-key - 1);
     }
     if (slave < 0 || !(die >= 0 && die < double(dies_.size())))
@@ -178,10 +178,14 @@ void DieContact::set_stick_rows(const Model& md, const std::vector<double>& rows
                   ", which this rank's contact does not hold");
     sticks_.push_back({std::int32_t(slave), std::int32_t(die), {rows[r + 2], rows[r + 3], rows[r + 4]}});
   }
-  std::sort(sticks_.begin(), sticks_.end(), [](const Stick& a, const Stick& b) {
-    return a.obstacle != b.obstacle ? a.obstacle < b.obstacle : a.slave < b.slave;
-  });
-  std::sort(face_sticks_.begin(), face_sticks_.end(), [](const Stick& a, const Stick& b) { return a.slave < b.slave; });
+  std::sort(sticks_.begin(), sticks_.end(), [](const Stick& a, const Stick& b) { return by_die(a) < by_die(b); });
+  std::sort(face_sticks_.begin(), face_sticks_.end(), [](const Stick& a, const Stick& b) { return by_face(a) < by_face(b); });
+}
+
+const double* DieContact::carried(const std::vector<Stick>& last, std::size_t& cursor, StickKey want, StickKey (*key)(const Stick&)) {
+  static constexpr double kNone[3] = {0, 0, 0};
+  while (cursor < last.size() && key(last[cursor]) < want) ++cursor;
+  return cursor < last.size() && key(last[cursor]) == want ? last[cursor].force : kNone;
 }
 
 double DieContact::compute(const Model& md, const State& st, double t, double dt, double dt_min) {
@@ -211,6 +215,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     tot.spring_energy = 0;
     tot.contacts = tot.point_contacts = 0;
   }
+  std::size_t held = 0;  // the first of the last step's sticks not before the slave in hand (by_die)
   for (std::size_t k = 0; k < dies_.size() + planes_.size(); ++k) {
     const bool die = k < dies_.size();
     const DieMotion* mo = die ? &dies_[k].motion : nullptr;
@@ -220,16 +225,6 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     // Coulomb at the slaves; with a shear factor the faces take the friction (face_friction)
     const double mu = die && !(dies_[k].shear_factor > 0) ? dies_[k].friction : 0.0;
     const double margin = margin_;
-    std::size_t held = 0;  // the first of the last step's sticks not before (k, s)
-    auto last_stick = [&](std::size_t s) -> const double* {
-      static constexpr double kNone[3] = {0, 0, 0};
-      while (held < last_sticks_.size() && (std::size_t(last_sticks_[held].obstacle) < k ||
-                                            (std::size_t(last_sticks_[held].obstacle) == k && std::size_t(last_sticks_[held].slave) < s)))
-        ++held;
-      const bool found = held < last_sticks_.size() && std::size_t(last_sticks_[held].obstacle) == k &&
-                         std::size_t(last_sticks_[held].slave) == s;
-      return found ? last_sticks_[held].force : kNone;
-    };
     // a clearance under 1e-6 of the margin is the bound's round-off: the slave is looked up
     const double clear = 1e-6 * margin;  // only a slave at least this far out is skipped
     DieTotals& tot = totals_[die ? k : planes_[k - dies_.size()].total];
@@ -285,7 +280,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
           for (int i = 0; i < 3; ++i) v_rel[i] -= rate * mo->direction[i];
         tangential_velocity(v_rel, hit.normal, vt);
         if (mu > 0) {  // the elastic stick carried from the last step, loaded by this step's slip
-          const double* f_old = last_stick(s);
+          const double* f_old = carried(last_sticks_, held, {std::int32_t(k), std::int32_t(s)}, by_die);
           coulomb_friction(mu, kI * depth, kI, f_old, hit.normal, vt, dt, a.friction_force);
           const double stored = stick_energy(a.friction_force, kI);
           a.stick_stored = stored - stick_energy(f_old, kI);
@@ -358,11 +353,7 @@ void DieContact::face_friction(const Model& md, const State& st, double t, doubl
       FaceFriction ff{std::int32_t(f), std::int32_t(k), {}, hit.triangle, 0.0};
       touched_[triangle0_[k] + std::size_t(hit.triangle)] = 1;
       // the elastic stick carried from the last step on this die (a face meets one die at a time)
-      static constexpr double kNone[3] = {0, 0, 0};
-      while (held < last_face_sticks_.size() && std::size_t(last_face_sticks_[held].slave) < f) ++held;
-      const bool carried = held < last_face_sticks_.size() && std::size_t(last_face_sticks_[held].slave) == f &&
-                           std::size_t(last_face_sticks_[held].obstacle) == k;
-      const double* f_old = carried ? last_face_sticks_[held].force : kNone;
+      const double* f_old = carried(last_face_sticks_, held, {std::int32_t(f), std::int32_t(k)}, by_face);
       const double kI = penalty_stiffness(penalty_scale_, face_mass_[f], dt_min, dt);
       interface_friction(tau, area, kI, f_old, hit.normal, vt, dt, ff.force);
       const double stored = stick_energy(ff.force, kI);

@@ -19,6 +19,7 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "contact/die_candidates.hpp"
@@ -119,7 +120,7 @@ class DieContact {
   // they survive a reference update (which renumbers the local particles) and a checkpoint.
   static constexpr std::size_t kStickValues = 5;  // slave, die, force (3)
   std::vector<double> stick_rows() const;
-  void set_stick_rows(const Model& md, const std::vector<double>& rows, const std::string& source);
+  void set_stick_rows(const std::vector<double>& rows, const std::string& source);
 
  private:
   struct Row {  // a slave's shape functions (md.material_* or the point's): u^h(x) = sum_k N[k] d_{cols[k]}
@@ -165,7 +166,14 @@ class DieContact {
     std::int32_t slave, obstacle;
     double force[3];
   };
-  std::vector<Stick> sticks_, last_sticks_;  // this step's and the last's, in (obstacle, slave) order (reserved once)
+  // The orders the loops meet the sticks in: the slaves' die by die, the faces' face by face.
+  using StickKey = std::pair<std::int32_t, std::int32_t>;
+  static StickKey by_die(const Stick& k) { return {k.obstacle, k.slave}; }
+  static StickKey by_face(const Stick& k) { return {k.slave, k.obstacle}; }
+  // The force of the stick `want` carried from the last step (zero when none), walking `cursor` on
+  // through `last`, which is in the order `key` of the loop that asks.
+  static const double* carried(const std::vector<Stick>& last, std::size_t& cursor, StickKey want, StickKey (*key)(const Stick&));
+  std::vector<Stick> sticks_, last_sticks_;  // this step's and the last's, by_die (reserved once)
 
   // Shear factor and hybrid friction (dies with shear_factor > 0) on the part's boundary faces of this
   // rank: a face whose centre is within a tenth of its size of such a die (or inside it) slides with
@@ -190,7 +198,7 @@ class DieContact {
   double moved_ = 0;                // the largest coefficient move of this step's compute
   std::vector<double> die_moved_;   // per die: its stroke's change in this step's compute
   std::vector<FaceFriction> face_active_;  // reserved once
-  std::vector<Stick> face_sticks_, last_face_sticks_;  // the faces' elastic sticks (slave: the face), in face order
+  std::vector<Stick> face_sticks_, last_face_sticks_;  // the faces' elastic sticks (slave: the face), by_face
   bool shear_ = false;                     // a die has shear_factor > 0
   std::vector<DieTotals> totals_;
   std::vector<double> die_box_;  // per die at t = 0: lo[3], hi[3]

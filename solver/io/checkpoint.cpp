@@ -239,7 +239,7 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
       rows[r + 1] = face ? -double(k + 1) : double(k);
       kept.insert(kept.end(), rows.begin() + std::ptrdiff_t(r), rows.begin() + std::ptrdiff_t(r + cols));
     }
-    contact.set_stick_rows(md, kept, path);
+    contact.set_stick_rows(kept, path);
   }
   if (f.exists("dies/rams") && !stage) {  // the rams of the dies driven by their press
     const auto rows = f.read<double>("dies/rams", State::kRamValues);

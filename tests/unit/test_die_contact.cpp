@@ -314,7 +314,7 @@ TEST(DieContact, ADieSlidingOverMaterialAtRestDragsItAlong) {
 TEST(DieContact, FrictionWorkIsTheForceTimesTheSlidingSpeedAndTheStickStoresItsLoad) {
   const Upsetting u;
   const Lifted lifted(u);
-  const double mu = 0.12, dt = Lifted::dt;
+  const double mu = 0.12, s = u.scene.contact.penalty_scale, dt = Lifted::dt;
   for (double sign : {1.0, -1.0}) {
     // sliding on at mu f_n (the second step: the stick already at the cap): the work is dt |F_t| v
     const double slip = slipping_speed(lifted, mu), v[3] = {sign * slip, 0, 0};
@@ -338,6 +338,10 @@ TEST(DieContact, FrictionWorkIsTheForceTimesTheSlidingSpeedAndTheStickStoresItsL
     held.account(u.md, stuck, v_old, dt, 0.0);
     const double work = 0.5 * dt * std::abs(held.totals()[0].force[0]) * stick;
     EXPECT_NEAR(held.totals()[0].friction_work / work, 0.0, 1e-9) << "sign " << sign;
+    // the spring energy holds it, beside the normal springs' k d^2 / 2
+    double normal = 0;
+    for (const auto& sl : lifted.slaves) normal += 0.5 * s * sl.mass / (dt * dt) * sl.depth * sl.depth;
+    EXPECT_NEAR((held.totals()[0].spring_energy - normal) / work, 1.0, 1e-9) << "sign " << sign;
   }
 }
 
@@ -351,7 +355,7 @@ TEST(DieContact, CarriedSticksLoadOnAsIfNeverMoved) {
   first.compute(u.md, st, 0.0, dt, dt);
   const std::vector<double> rows = first.stick_rows();
   ASSERT_EQ(rows.size(), rk::DieContact::kStickValues * lifted.slaves.size());
-  second.set_stick_rows(u.md, rows, "test");
+  second.set_stick_rows(rows, "test");
   first.compute(u.md, st, 0.0, dt, dt);
   second.compute(u.md, st, 0.0, dt, dt);
   EXPECT_EQ(first.stick_rows(), second.stick_rows());
@@ -359,7 +363,7 @@ TEST(DieContact, CarriedSticksLoadOnAsIfNeverMoved) {
   std::vector<double> bad = rows;
   bad[0] = 1e9;  // a particle no rank holds
   try {
-    second.set_stick_rows(u.md, bad, "rank_0000.h5");
+    second.set_stick_rows(bad, "rank_0000.h5");
     ADD_FAILURE() << "a stick on a particle this rank does not hold was taken";
   } catch (const rk::Error& e) {
     EXPECT_NE(std::string(e.what()).find("rank_0000.h5: a friction stick names particle 1000000000"), std::string::npos) << e.what();
