@@ -298,13 +298,16 @@ struct Scene {
 
   // The part's contact with itself or between its bodies (solver/contact/part_contact.hpp) is modeled.
   bool part_contact() const { return contact.self || !bodies.empty(); }
-  // time.cfl's default: 0.9, and 0.5 with dies (docs/decisions.md, "CFL default: 0.9 without dies, 0.5 with dies")
-  double default_cfl() const { return dies.empty() ? 0.9 : 0.5; }
-  // contact.penalty_scale as the contact laws take it at this run's CFL: the key holds at the default CFL,
-  // and k = s m / dt_min^2 with dt_min proportional to the CFL, so s follows CFL^2 and a CFL changes the
-  // step, not the contact's stiffness (at most m / dt^2 all the same: contact/contact_laws.hpp)
+  // time.cfl's default (docs/decisions.md, "CFL default: 0.9")
+  static constexpr double default_cfl() { return 0.9; }
+  // the CFL at which contact.penalty_scale holds: 0.5 with dies, 0.9 without (the defaults the penalty's
+  // scale was measured at; docs/decisions.md, "Contact laws")
+  double penalty_cfl() const { return dies.empty() ? 0.9 : 0.5; }
+  // contact.penalty_scale as the contact laws take it at this run's CFL: k = s m / dt_min^2 with dt_min
+  // proportional to the CFL, so s follows CFL^2 and a CFL changes the step, not the contact's stiffness
+  // (at most m / dt^2 all the same: contact/contact_laws.hpp)
   double penalty_scale_at_cfl() const {
-    const double r = time.cfl / default_cfl();
+    const double r = time.cfl / penalty_cfl();
     return contact.penalty_scale * r * r;
   }
   std::string resolved_yaml;     // the deck with every default filled in

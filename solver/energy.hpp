@@ -12,15 +12,22 @@ namespace rk {
 
 struct Energies {
   double kinetic = 0, internal = 0, plastic = 0, external = 0;
+  // sum m v^{n-1/2} . v^{n+1/2} / 2: the kinetic part of the energy the central difference conserves
+  // (with the strain energy, exactly for a linear system); the balance takes it (docs/decisions.md,
+  // "The energy balance: the central difference's own kinetic energy, the largest scale so far")
+  double kinetic_step = 0;
   double contact = 0;  // work of the contact forces on the material they hold (set by the caller)
   double thermal = 0;  // the stress's work on the thermal strain (in internal)
 };
 
-// Whole-model totals at time t^n; kinetic energy from vbar = (v^{n-1/2} + v^{n+1/2}) / 2.
+// Whole-model totals at time t^n; kinetic energy from vbar = (v^{n-1/2} + v^{n+1/2}) / 2 (and
+// kinetic_step from v^{n-1/2} . v^{n+1/2}).
 Energies compute_energies(const Model& md, const State& st, const std::vector<double>& v_old, const Comm& comm);
 
-// |E(t) - E(0) - W_ext - W_contact| / max(KE0, |W_ext|, |W_contact|, |W_thermal|): the energy put in
-// sets the scale (a thermal strain puts energy in as a load does).
-double energy_error(const Energies& e, double kinetic0);
+// |KE_step + E_int - KE0 - W_ext - W_contact| / scale, the scale the largest of KE0, |W_ext|, |W_contact|
+// and |W_thermal| so far: the energy put in sets it (a thermal strain puts energy in as a load does), and
+// it keeps its largest value, as a load that is taken off again leaves its error in the balance.
+// `scale` carries it from row to row (0 at the start).
+double energy_error(const Energies& e, double kinetic0, double& scale);
 
 }  // namespace rk

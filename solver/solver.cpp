@@ -463,7 +463,8 @@ bool Simulation::history_due(bool last) const {
 void Simulation::history(double dt, bool last) {
   static const std::vector<double> none;
   const std::vector<double>& filled = fill_ ? fill_->filled(*dies_, comm_) : none;
-  const HistoryRow row = history_->record(md_, st_, *dies_, *parts_, filled, *ebc_, v_old_, dt, clock_.kinetic0, comm_);
+  const HistoryRow row = history_->record(md_, st_, *dies_, *parts_, filled, *ebc_, v_old_, dt, clock_.kinetic0,
+                                             clock_.energy_scale, comm_);
   tracks_->record(md_, st_, comm_);
   const double t_end = scene_.time.end, run = t_end - t0_;  // the run's end and length (a stage's own)
   max_ebc_error_ = std::max(max_ebc_error_, row.ebc_error);

@@ -19,7 +19,7 @@ std::string checkpoint_path(const std::string& case_dir, int rank) {
 
 namespace {
 
-constexpr std::size_t kClockScalars = 17;  // the run clock's doubles (write_temporary lists them)
+constexpr std::size_t kClockScalars = 18;  // the run clock's doubles (write_temporary lists them)
 
 std::vector<double> ram_rows(const State& st) {  // State::Ram's fields, a row per ram
   std::vector<double> rows;
@@ -40,7 +40,7 @@ void write_temporary(const std::string& tmp, const Model& md, const State& st, c
     f.write("clock/scalars", std::vector<double>{st.t, st.dt_half, c.max_error, st.external_work, c.next_output,
                                                  c.next_history, c.dt_stable, c.kinetic0, c.last_error, c.max_ke_ratio,
                                                  st.update_work, st.viscous_work, c.max_pressure_ratio, st.thermal_work, c.dt_penalty,
-                                                 c.max_ke_ratio_late, st.part_contact_work});
+                                                 c.max_ke_ratio_late, st.part_contact_work, c.energy_scale});
     f.write("clock/integers", std::vector<std::int64_t>{st.step, c.frames, std::int64_t(dies.size())});
     std::vector<double> die_work;
     for (const auto& d : dies) die_work.insert(die_work.end(), {d.press_work, d.friction_work, d.contact_work});
@@ -204,7 +204,7 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
   c.next_output = s[4], c.next_history = s[5], c.dt_stable = s[6], c.kinetic0 = s[7], c.last_error = s[8],
   c.max_ke_ratio = s[9], st.update_work = s[10], st.viscous_work = s[11];
   c.max_pressure_ratio = s[12], st.thermal_work = s[13], c.dt_penalty = s[14];
-  c.max_ke_ratio_late = s[15], st.part_contact_work = s[16];
+  c.max_ke_ratio_late = s[15], st.part_contact_work = s[16], c.energy_scale = s[17];
   st.step = i[0], c.frames = i[1];
   const auto work = f.read<double>("dies/work", 3);
   for (std::size_t k = 0; k < dies.size(); ++k)

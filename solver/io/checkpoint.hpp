@@ -17,12 +17,13 @@
 namespace rk {
 
 // The layout of the checkpoint files: a reader refuses another.
-inline constexpr std::int64_t kCheckpointFormat = 9;
+inline constexpr std::int64_t kCheckpointFormat = 10;
 
 // What the time loop carries besides the State.
 struct RunClock {
   double next_output = 0, next_history = 0, dt_stable = 0, kinetic0 = 0, last_error = 0, max_ke_ratio = 0;
   double max_error = 0;  // the largest energy error of the run so far
+  double energy_scale = 0;  // the energy error's scale so far (energy_error)
   double max_ke_ratio_late = 0;  // the largest kinetic / internal energy over the run's second half
   double max_pressure_ratio = 0;  // the largest |p| / (rho0 c_L v_max + sigma_y) so far (PressureBound)
   // the smallest unclipped global stable step since the start or the last reference update (-1 just

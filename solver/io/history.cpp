@@ -73,7 +73,8 @@ History::History(const std::string& case_dir, const Scene& scene, const Model& m
 HistoryRow History::record(const Model& md, const State& st, const DieContact& dies, const PartContact& parts,
                            const std::vector<double>& filled,
                            const EssentialBcs& ebc,
-                           const std::vector<double>& v_old, double dt, double kinetic0, const Comm& comm) {
+                           const std::vector<double>& v_old, double dt, double kinetic0, double& energy_scale,
+                           const Comm& comm) {
   HistoryRow out;
   Energies& e = out.energies;
   e = compute_energies(md, st, v_old, comm);
@@ -126,7 +127,7 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
   e.external -= 0.5 * s.ebc_work;
   Energies balance = e;  // the kinetic energy reference updates smoothed away is not an error
   balance.external += s.update_work;
-  out.energy_error = energy_error(balance, kinetic0);
+  out.energy_error = energy_error(balance, kinetic0, energy_scale);
   out.kinetic_internal = e.internal > 0 ? e.kinetic / e.internal : 0.0;
 
   std::size_t c = 0;

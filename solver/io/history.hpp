@@ -57,11 +57,13 @@ class History {
 
   // One row at t^n (v_old = v^{n-1/2}; st.v = v^{n+1/2}; dt the step from t^n). Collective: a write
   // that fails on rank 0 (a full disk) stops every rank.
-  // `filled`: each die's filled fraction (contact/die_fill.hpp)
+  // `filled`: each die's filled fraction (contact/die_fill.hpp); `energy_scale`: the energy error's
+  // scale so far (energy_error), updated
   HistoryRow record(const Model& md, const State& st, const DieContact& dies, const PartContact& parts,
                     const std::vector<double>& filled,
                     const EssentialBcs& ebc,
-                    const std::vector<double>& v_old, double dt, double kinetic0, const Comm& comm);
+                    const std::vector<double>& v_old, double dt, double kinetic0, double& energy_scale,
+                    const Comm& comm);
 
   const std::vector<std::string>& columns() const { return columns_; }
   const std::vector<double>& row() const { return row_; }  // the last row written

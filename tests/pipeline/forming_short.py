@@ -4,7 +4,7 @@ through reference updates), and stopped half-way and restarted bitwise equal to 
 dies' and the symmetry planes' contact work in the checkpoint);
 the wheel-forging sector keeps its cut faces on their non-axis-aligned symmetry planes (exact EBCs), conserves
 volume and energy, presses with the measured punch force at the end of its 0.3 mm stroke, presses as deep
-with the same work at time.cfl=0.9 (the contact's stiffness does not follow the CFL), and
+with the same work at the default CFL 0.9 as at 0.5 (the contact's stiffness does not follow the CFL), and
 forming_report.py writes its numbers and pictures."""
 import csv
 import json
@@ -52,9 +52,9 @@ again = (split / "history.csv").read_text().splitlines()
 rkcase.check(mid >= 1 and all(np.array_equal(a, b) for a, b in zip(frames[2], resumed)) and whole[-1] == again[-1],
              f"back extrusion stopped after {mid} reference update{'s' * (mid != 1)} and restarted: the last frame and history row "
              "bitwise equal to the whole run")
-# Coulomb friction's elastic stick holds at any step: no warning above the dies' default CFL.
-p = tools.solve(tools.work / "back_extrusion_r1", 1, sets=short + ["time.end=1e-6", "time.cfl=0.9"])
-rkcase.check("warning: time.cfl" not in p.stderr, "back extrusion (Coulomb friction) at time.cfl=0.9: no warning")
+# Coulomb friction's elastic stick holds at any step: no warning at the default CFL 0.9.
+p = tools.solve(tools.work / "back_extrusion_r1", 1, sets=short + ["time.end=1e-6"])
+rkcase.check("warning: time.cfl" not in p.stderr, "back extrusion (Coulomb friction) at the default CFL 0.9: no warning")
 
 # Wheel forging sector: 0.3 mm of stroke, exact symmetry planes (the nodal ones let the material at the
 # cut faces drift off them by ~3 % of its motion, measured in essential_bcs.py), total Lagrangian (the exact
@@ -62,7 +62,8 @@ rkcase.check("warning: time.cfl" not in p.stderr, "back extrusion (Coulomb frict
 c = tools.case("wheel_forging")
 tools.prep(c, 2, scene=geometry / "wheel_forging" / "scene.yaml",
            sets=["discretization.spacing=4e-3", "discretization.ebc_method=transformation", "reference_updates.strain=0"])
-tools.solve(c, 2, sets=["time.end=30e-6", "time.output_interval=10e-6"])
+p = tools.solve(c, 2, sets=["time.end=30e-6", "time.output_interval=10e-6"])
+rkcase.check("warning: time.cfl" not in p.stderr, "wheel (frictionless) at the default CFL 0.9: no warning")
 tools.post(c)
 first = meshio.read(c / "vtk" / "frame_00000.vtu")
 last = meshio.read(c / "vtk" / "frame_00003.vtu")
@@ -89,15 +90,16 @@ res = json.loads(report.stdout)
 print(json.dumps(res, indent=2))
 rkcase.check(res["max_penetration_mm"] < 0.01, f"deepest penetration {res['max_penetration_mm']:.4f} mm < 0.01 mm")
 rkcase.check(abs(res["dies"]["punch"]["stroke_mm"] - 0.3) < 1e-9, "punch stroke 0.3 mm at 30 us (10 m/s)")
-# The punch force (full part) at the end of the stroke, as the mean over its last 0.05 mm (57 history
-# rows: the penalty contact rings, the last row alone moved from 285 to 469 kN between the runs below).
-# Measured: 355.9 kN here (the same, bitwise, on 1 rank); 359.0 kN at CFL 0.4, 355.2 kN at penalty
-# scale 0.2, 332.6 and 340.0 kN at spacing 3.6 and 4.4 mm: at most 6.5 % from it, the tolerance 13 %
-# is twice that.
+# The punch force (full part) at the end of the stroke, as the mean over its last 0.05 mm (34 history
+# rows at the default CFL 0.9, 57 at 0.5: a row per step at most; the penalty contact rings, the last
+# row alone moved from 285 to 469 kN between runs). Measured at CFL 0.5: 355.9 kN (the same, bitwise,
+# on 1 rank); 359.0 kN at CFL 0.4, 355.2 kN at penalty scale 0.2, 332.6 and 340.0 kN at spacing 3.6 and
+# 4.4 mm: at most 6.5 % from it, the tolerance 13 % is twice that. At the default 0.9: 355.3 kN
+# (2026-12-05).
 with open(c / "history.csv") as f:
     near = [float(r["punch.force"]) for r in csv.DictReader(f) if 0.25e-3 <= float(r["punch.stroke"]) <= 0.3e-3 + 1e-12]
 force = sum(near) / max(len(near), 1) / 1e3
-rkcase.check(len(near) >= 40 and abs(force / 355.9 - 1) < 0.13,
+rkcase.check(len(near) >= 30 and abs(force / 355.9 - 1) < 0.13,
              f"punch force {force:.1f} kN (full part) over the stroke's last 0.05 mm ({len(near)} rows): the measured "
              "355.9 kN within 13 %")
 rkcase.check(res["max_abs_volume_change"] < 0.005, f"volume change {100 * res['max_abs_volume_change']:.3f} % < 0.5 %")
@@ -106,12 +108,11 @@ rkcase.check(res["final_energy_error"] < 0.02, f"energy identity within {100 * r
              f"the end (< 2 %; {100 * res['max_energy_error']:.2f} % at most during the impact)")
 
 # A CFL changes the step, not the contact's stiffness (docs/decisions.md, "Contact laws"): the same 0.3 mm at
-# time.cfl=0.9 takes 1.8x fewer steps and presses as deep as at the default 0.5.
-fast = tools.case("wheel_forging_cfl")
-tools.prep(fast, 2, scene=geometry / "wheel_forging" / "scene.yaml",
+# the default 0.9 takes 1.8x fewer steps than at 0.5 and presses as deep.
+slow = tools.case("wheel_forging_cfl")
+tools.prep(slow, 2, scene=geometry / "wheel_forging" / "scene.yaml",
            sets=["discretization.spacing=4e-3", "discretization.ebc_method=transformation", "reference_updates.strain=0"])
-p = tools.solve(fast, 2, sets=["time.end=30e-6", "time.output_interval=10e-6", "time.cfl=0.9"])
-rkcase.check("warning: time.cfl" not in p.stderr, "wheel (frictionless) at time.cfl=0.9: no warning")
+tools.solve(slow, 2, sets=["time.end=30e-6", "time.output_interval=10e-6", "time.cfl=0.5"])
 
 
 def pressed(case):
@@ -121,12 +122,12 @@ def pressed(case):
     return steps, max(float(r["max_penetration"]) for r in rows), float(rows[-1]["punch.work"])
 
 
-(n5, d5, w5), (n9, d9, w9) = pressed(c), pressed(fast)
+(n5, d5, w5), (n9, d9, w9) = pressed(slow), pressed(c)
 # Measured: 356 and 198 steps, the deepest penetration +4.1 %, the punch's work -0.024 % (with the scale not
 # following the CFL, the contact 3.2x softer: +76 % and -0.79 %); the tolerances twice those.
 rkcase.check(n5 / n9 > 1.7 and abs(d9 / d5 - 1) < 0.082 and abs(w9 / w5 - 1) < 5e-4,
-             f"wheel at time.cfl=0.9: {n9} steps against {n5}, the deepest penetration {100 * (d9 / d5 - 1):+.1f} % "
-             f"(< 8.2 %) and the punch's work {100 * (w9 / w5 - 1):+.3f} % (< 0.05 %) from the default's")
+             f"wheel at the default CFL 0.9: {n9} steps against {n5}, the deepest penetration {100 * (d9 / d5 - 1):+.1f} % "
+             f"(< 8.2 %) and the punch's work {100 * (w9 / w5 - 1):+.3f} % (< 0.05 %) from CFL 0.5's")
 for png in ("force_stroke.png", "energies.png", "stages.png"):
     size = (c / "plots" / png).stat().st_size
     rkcase.check(size > 10_000, f"plots/{png} written ({size} bytes)")

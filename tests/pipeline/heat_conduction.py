@@ -89,8 +89,9 @@ rkcase.check(rad["max_error"] < 0.0015, f"radiation: T^h within {rad['max_error'
 # (the lumped model's own error at Biot 0.02, as with a constant c: 0.23 %); a constant c at the
 # table's first value (tried: the table ignored) puts the mean 6.8 % off. The die's heat is the enthalpy the
 # bar lost, rho0 V (h(T0) - h(T_mean)), to 1.0e-7 (h is quadratic: the points' spread of 0.8 K about
-# the mean); the volume change is rho(T0) / rho(T_mean) - 1 = -1.102 % to 1.0e-4 of itself (the same
-# spread).
+# the mean); the volume change is rho(T0) / rho(T_mean) - 1 = -1.102 %, over the last 2 s (100 rows: the
+# free bar rings about it by up to 8e-4 of itself) to -1.24e-4 / -1.25e-4 of itself at CFL 0.5 / 0.9
+# (measured 2026-12-05; the same spread), bound 2.5e-4.
 case, tabled = run("slab_tables", "scene_tables.yaml")
 rkcase.check(tabled["max_lumped_error"] < 0.005,
              f"c(T), rho(T): the mean within {tabled['max_lumped_error']:.4f} of the lumped ODE (< 0.005)")
@@ -102,10 +103,14 @@ rho = lambda T: 8915 + (8766 - 8915) * (T - 270) / 330
 lost = 8766 * V * (h(600) - h(T_mean))
 rkcase.check(abs(float(row["die.heat"]) / lost - 1) < 4e-7,
              f"c(T): the die took {float(row['die.heat']):.4f} J, the bar's enthalpy fell by {lost:.4f} J")
-shrink = rho(600) / rho(T_mean) - 1
-rkcase.check(abs(float(row["volume_change"]) / shrink - 1) < 3e-4,
-             f"rho(T): the volume changed by {float(row['volume_change']):.6f}, rho(T0) / rho(T) - 1 = {shrink:.6f}")
+late = list(csv.DictReader(open(case / "history.csv")))[-100:]
+changed = sum(float(r["volume_change"]) for r in late) / len(late)
+shrink = sum(rho(600) / rho(float(r["temperature_mean"])) - 1 for r in late) / len(late)
+rkcase.check(abs(changed / shrink - 1) < 2.5e-4,
+             f"rho(T): the volume changed by {changed:.6f} over the last 2 s, rho(T0) / rho(T) - 1 = {shrink:.6f}")
 summary = json.loads((case / "solve.json").read_text())
-# measured 3.0 %: the free bar rings as it shrinks (its kinetic energy is as large as the thermal
-# strain's work, the scale); without that work in the balance the error was 2e5 times the scale
+# measured 2026-12-05: 3.1 % at the default CFL 0.9 (0.36 % at 0.5). The free bar rings as it shrinks,
+# its kinetic energy as large as the thermal strain's work, the scale, and each step shortened to land
+# on a frame adds to the balance's error (0.22 % at 0.9 with one frame at the end); without the thermal
+# strain's work in the balance the error was 2e5 times the scale
 rkcase.check(summary["max_energy_error"] < 0.05, f"energy balance with the thermal strain's work: {summary['max_energy_error']:.4f} (< 0.05)")

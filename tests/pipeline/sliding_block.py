@@ -24,7 +24,14 @@ speed = [f.point_data["velocity"][:, 0].mean() for f in frames]
 t = 1e-4
 rkcase.check(abs(slide[1] / (v0 * t - 0.5 * mu * g * t * t) - 1) < 0.02,
              f"slid {1e3 * slide[1]:.4f} mm at 0.1 ms (closed form 0.7500 mm, 2 %)")
-rkcase.check(abs(speed[1] / (v0 - mu * g * t) - 1) < 0.03, f"speed {speed[1]:.3f} m/s at 0.1 ms (closed form 5.000, 3 %)")
+# The speed reads the block's bounce on its contact springs as well: the floor's impulse is
+# m (g t + v_z), so while it slides v_x = v0 - mu (g t + v_z). Measured 2026-12-05 at 0.1 ms: v_x
+# 4.964 / 5.066 / 4.842 m/s at CFL 0.5 / 0.7 / 0.9 (v_z 0.040 / -0.099 / 0.260 m/s), v_x + mu v_z
+# within -0.33 / +0.33 / -0.55 % of v0 - mu g t; bound 1.1 %.
+vz = frames[1].point_data["velocity"][:, 2].mean()
+rkcase.check(abs((speed[1] + mu * vz) / (v0 - mu * g * t) - 1) < 0.011,
+             f"speed {speed[1]:.3f} m/s at 0.1 ms, bouncing at {vz:.3f} m/s: v_x + mu v_z = {speed[1] + mu * vz:.3f} "
+             "(closed form 5.000, 1.1 %)")
 rkcase.check(abs(speed[3]) < 0.05, f"at rest after the stop time: {speed[3]:.4f} m/s")
 rkcase.check(abs(slide[3] / (v0 * v0 / (2 * mu * g)) - 1) < 0.05,
              f"total slide {1e3 * slide[3]:.4f} mm (closed form 1.0000 mm, 5 %)")

@@ -51,7 +51,7 @@ TEST(DieContact, ALiftIntoTheDieMeetsItAtTheParticlesAndThePoints) {
   const rk::Model& md = u.md;
   const double zero[9] = {};
   rk::State st = rk::State::initial(md, zero, zero);
-  const double lift = 0.8e-3, top = 10e-3, dt = 1e-7, s = u.scene.contact.penalty_scale;
+  const double lift = 0.8e-3, top = 10e-3, dt = 1e-7, s = u.scene.penalty_scale_at_cfl();
   for (std::size_t I = 0; I < md.n; ++I) st.u[3 * I + 2] = lift;
   rk::DieContact contact(md, u.scene, u.dies);
   const double bound = contact.compute(md, st, 0.0, dt, dt);
@@ -73,7 +73,7 @@ TEST(DieContact, ALiftIntoTheDieMeetsItAtTheParticlesAndThePoints) {
 }
 
 // A CFL changes the step, not the contact's stiffness: the same lift at time.cfl = 0.9, with its step
-// 1.8x the default's (k = s m / dt_min^2, the scale taken at the default CFL 0.5), meets the die with the
+// 1.8x the default's (k = s m / dt_min^2, the scale taken at CFL 0.5 with dies), meets the die with the
 // default's force; at 1.5 the spring's own bound m / dt^2 holds it instead.
 TEST(DieContact, ACflChangesTheStepNotTheStiffness) {
   auto pressed = [](const char* cfl, double dt) {
@@ -150,7 +150,7 @@ TEST(DieContact, SymmetryPlanesHoldTheMaterialThatCrossesThem) {
   const rk::Model& md = u.md;
   const double zero[9] = {};
   rk::State st = rk::State::initial(md, zero, zero);
-  const double shift = 0.8e-3, dt = 1e-7, s = u.scene.contact.penalty_scale;  // across x = 0, not into the die
+  const double shift = 0.8e-3, dt = 1e-7, s = u.scene.penalty_scale_at_cfl();  // across x = 0, not into the die
   for (std::size_t I = 0; I < md.n; ++I) st.u[3 * I] = -shift;
   rk::DieContact contact(md, u.scene, u.dies);
   const double bound = contact.compute(md, st, 0.0, dt, dt);
@@ -244,7 +244,7 @@ rk::Scene with_friction(const Upsetting& u, double mu) {
 TEST(DieContact, FrictionsStickLoadsWithTheSlipWithinMuFn) {
   const Upsetting u;
   const Lifted lifted(u);
-  const double mu = 0.12, s = u.scene.contact.penalty_scale, dt = Lifted::dt;
+  const double mu = 0.12, s = u.scene.penalty_scale_at_cfl(), dt = Lifted::dt;
   ASSERT_GT(lifted.depth_min, 0.0);
   // a slave sticks while k (slip) <= mu k d, i.e. while it has slid under mu d: two steps of a
   // quarter of the shallowest's
@@ -277,7 +277,7 @@ double slipping_speed(const Lifted& lifted, double mu) { return 4 * mu * lifted.
 TEST(DieContact, FrictionSlipsAtMuFnAgainstTheSlidingDirection) {
   const Upsetting u;
   const Lifted lifted(u);
-  const double mu = 0.12, s = u.scene.contact.penalty_scale, dt = Lifted::dt;
+  const double mu = 0.12, s = u.scene.penalty_scale_at_cfl(), dt = Lifted::dt;
   const double speed = slipping_speed(lifted, mu);
   const double dir[3] = {0.6, -0.8, 0};  // a sliding direction off the axes
   const double v[3] = {speed * dir[0], speed * dir[1], 0};
@@ -296,7 +296,7 @@ TEST(DieContact, FrictionSlipsAtMuFnAgainstTheSlidingDirection) {
 TEST(DieContact, ADieSlidingOverMaterialAtRestDragsItAlong) {
   const Upsetting u;
   const Lifted lifted(u);
-  const double mu = 0.12, s = u.scene.contact.penalty_scale, dt = Lifted::dt;
+  const double mu = 0.12, s = u.scene.penalty_scale_at_cfl(), dt = Lifted::dt;
   rk::Scene scene = with_friction(u, mu);
   const double speed = slipping_speed(lifted, mu);  // slip everywhere, as above
   scene.dies[0].motion = rk::DieMotion{{0, 1, 0}, speed, {}};  // the die moves along +y over its own face's plane
@@ -314,7 +314,7 @@ TEST(DieContact, ADieSlidingOverMaterialAtRestDragsItAlong) {
 TEST(DieContact, FrictionWorkIsTheForceTimesTheSlidingSpeedAndTheStickStoresItsLoad) {
   const Upsetting u;
   const Lifted lifted(u);
-  const double mu = 0.12, s = u.scene.contact.penalty_scale, dt = Lifted::dt;
+  const double mu = 0.12, s = u.scene.penalty_scale_at_cfl(), dt = Lifted::dt;
   for (double sign : {1.0, -1.0}) {
     // sliding on at mu f_n (the second step: the stick already at the cap): the work is dt |F_t| v
     const double slip = slipping_speed(lifted, mu), v[3] = {sign * slip, 0, 0};

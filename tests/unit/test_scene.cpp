@@ -59,10 +59,13 @@ TEST(Scene, GoodSceneResolvesDefaults) {
   EXPECT_EQ(s.prep_hash.size(), 16u);
 }
 
-TEST(Scene, DiesKeepTheSmallerDefaultStep) {  // their penalty stiffness is tied to the step
+// Dies take the same default step; their penalty's scale holds at CFL 0.5, so at 0.9 it is taken
+// (0.9 / 0.5)^2 times: the same stiffness k = s m / dt^2 at the 1.8x step.
+TEST(Scene, DiesTakeTheDefaultStepAndKeepTheirPenaltysStiffness) {
   const rk::Scene s = rk::load_scene(std::string(RK_SOURCE_DIR) + "/geometry/upsetting/scene.yaml");
   ASSERT_FALSE(s.dies.empty());
-  EXPECT_DOUBLE_EQ(s.time.cfl, 0.5);
+  EXPECT_DOUBLE_EQ(s.time.cfl, 0.9);
+  EXPECT_DOUBLE_EQ(s.penalty_scale_at_cfl(), s.contact.penalty_scale * 3.24);
 }
 
 TEST(Scene, UnknownKey) {
