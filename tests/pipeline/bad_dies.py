@@ -71,7 +71,7 @@ matched = [any(float(r["time"]) <= float(t) and f"{1e3 * float(r['die.stroke']):
                and f"{1e-3 * float(r['die.force']):.4g}" == kn for r in rows) for t, mm, kn in lines]
 rkcase.check(len(lines) >= 2 and all(matched), f"the progress line's stroke and force are the history's: {lines}")
 # Suspicious but legal: mass scaling so strong that inertia carries the load. The same 0.2 ms at
-# time.mass_scaling_dt = 2e-6 s (183x the density at the default CFL 0.9, 10x the scene's) keeps the
+# time.mass_scaling_dt = 2e-6 s (183x the density at the default CFL 0.9, 5.6x the scene's 3.6e-7 s) keeps the
 # kinetic energy at 7.8 % of the internal energy over the run's second half (measured 2026-12-05; at
 # CFL 0.5, 594x and 22.9 %, with the die force 6 % under the scene's and 0.25 % at the scene's 2e-7 s,
 # measured 2026-12-02): a warning naming the key, in the log, solve.json and report.md.
