@@ -20,8 +20,11 @@ struct Energies {
   double thermal = 0;  // the stress's work on the thermal strain (in internal)
 };
 
-// Whole-model totals at time t^n; kinetic energy from vbar = (v^{n-1/2} + v^{n+1/2}) / 2 (and
-// kinetic_step from v^{n-1/2} . v^{n+1/2}).
+// This rank's shares at time t^n (its owned particles, its points); kinetic energy from
+// vbar = (v^{n-1/2} + v^{n+1/2}) / 2, kinetic_step from v^{n-1/2} . v^{n+1/2}.
+Energies rank_energies(const Model& md, const State& st, const std::vector<double>& v_old);
+
+// Whole-model totals at time t^n: rank_energies summed over the ranks.
 Energies compute_energies(const Model& md, const State& st, const std::vector<double>& v_old, const Comm& comm);
 
 // |KE_step + E_int - KE0 - W_ext - W_contact| / scale, the scale the largest of KE0, |W_ext|, |W_contact|

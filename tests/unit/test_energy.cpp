@@ -1,12 +1,43 @@
-// The energy balance (solver/energy.hpp): the central difference's own kinetic energy, and a scale that
-// keeps the largest energy put in.
+// The energy balance (solver/energy.hpp): the two kinetic energies a rank sums from the half-step
+// velocities, the central difference's own in the balance, and a scale that keeps the largest energy put in.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
+#include "die_surface.hpp"
 #include "energy.hpp"
+#include "material_above.hpp"
+#include "scene.hpp"
+#include "state.hpp"
 
 namespace {
+
+// On the upsetting eighth (2.5 mm, 1 rank), v^{n-1/2} = a and v^{n+1/2} = b on every particle: the
+// kinetic energy is M |(a + b) / 2|^2 / 2 and the central difference's M a . b / 2, M the part's mass.
+// With b = -a (a particle at the turn of its swing) the first is 0 and the second -M |a|^2 / 2.
+TEST(EnergyError, TheRanksKineticEnergiesFromTheTwoHalfStepVelocities) {
+  const rk::Scene scene = rk::load_scene(std::string(RK_SOURCE_DIR) + "/geometry/upsetting/scene.yaml",
+                                         {{"discretization.spacing", "2.5e-3"}});
+  const std::vector<rk::DieSurface> dies{rk::mesh_die(scene.dies[0], scene.discretization.spacing)};
+  const rk::Model md = one_rank_model(scene, dies);
+  rk::State st = rk::State::initial(md, std::array<double, 9>{}.data(), std::array<double, 9>{}.data());
+  const double a[3] = {1.0, -2.0, 0.5}, b[3] = {3.0, 1.0, -1.0};
+  std::vector<double> v_old(st.v.size());
+  double M = 0;
+  for (std::size_t I = 0; I < md.n; ++I) {
+    if (md.owned[I]) M += md.mass[I];
+    for (int i = 0; i < 3; ++i) v_old[3 * I + i] = a[i], st.v[3 * I + i] = b[i];
+  }
+  rk::Energies e = rk::rank_energies(md, st, v_old);
+  EXPECT_NEAR(e.kinetic / (0.5 * M * (4.0 + 0.25 + 0.0625)), 1.0, 1e-12);  // (a + b) / 2 = (2, -0.5, -0.25)
+  EXPECT_NEAR(e.kinetic_step / (0.5 * M * (3.0 - 2.0 - 0.5)), 1.0, 1e-12);  // a . b = 0.5
+  for (std::size_t I = 0; I < md.n; ++I)
+    for (int i = 0; i < 3; ++i) st.v[3 * I + i] = -a[i];
+  e = rk::rank_energies(md, st, v_old);
+  EXPECT_NEAR(e.kinetic, 0.0, 1e-15);
+  EXPECT_NEAR(e.kinetic_step / (-0.5 * M * 5.25), 1.0, 1e-12);
+}
 
 // One mass on a linear spring, stepped as the solver steps the particles (v^{n+1/2} = v^{n-1/2} - dt k
 // u^n / m, u^{n+1} = u^n + dt v^{n+1/2}) at omega dt = 1.8, near the limit 2. With the kinetic energy
