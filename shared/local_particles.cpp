@@ -15,7 +15,15 @@ std::vector<std::int32_t> local_particles(const LocalParticleRequest& r) {
     r.grid.covering(x, found);
     for (auto I : found) mark[I] = 1;
   };
-  for (std::size_t g = 0; g < r.points.size() / 3; ++g) mark_support(&r.points[3 * g]);
+  if (r.point_groups.empty())
+    for (std::size_t g = 0; g < r.points.size() / 3; ++g) mark_support(&r.points[3 * g]);
+  for (std::size_t c = 0; c + 1 < r.point_groups.size(); ++c) {
+    const auto g0 = std::size_t(r.point_groups[c]), g1 = std::size_t(r.point_groups[c + 1]);
+    found.clear();
+    r.grid.near_group(&r.points[3 * g0], g1 - g0, found);
+    for (auto I : found)
+      for (auto g = g0; g < g1 && !mark[I]; ++g) mark[I] = r.grid.covers(&r.points[3 * g], I);
+  }
   for (auto I : r.owned) mark_support(&r.X[3 * std::size_t(I)]);
   std::vector<std::int32_t> local;
   for (std::size_t I = 0; I < mark.size(); ++I)

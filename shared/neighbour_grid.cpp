@@ -43,14 +43,51 @@ void NeighbourGrid::covering(const double x[3], std::vector<std::int32_t>& out) 
     for (std::int64_t j = std::max<std::int64_t>(b[1] - 1, 0); j <= std::min(b[1] + 1, dims_[1] - 1); ++j)
       for (std::int64_t i = std::max<std::int64_t>(b[0] - 1, 0); i <= std::min(b[0] + 1, dims_[0] - 1); ++i) {
         const std::int64_t bin = (k * dims_[1] + j) * dims_[0] + i;
+        for (std::int32_t s = start_[bin]; s < start_[bin + 1]; ++s)
+          if (covers(x, items_[s])) out.push_back(items_[s]);
+      }
+  std::sort(out.begin() + first, out.end());
+}
+
+void NeighbourGrid::near_group(const double* x, std::size_t count, std::vector<std::int32_t>& out) const {
+  if (count == 0) return;
+  double c[3] = {0, 0, 0}, reach2 = 0;  // the group's ball: its centroid and the farthest point from it
+  for (std::size_t k = 0; k < count; ++k)
+    for (int d = 0; d < 3; ++d) c[d] += x[3 * k + d] / double(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    double r2 = 0;
+    for (int d = 0; d < 3; ++d) r2 += (x[3 * k + d] - c[d]) * (x[3 * k + d] - c[d]);
+    reach2 = std::max(reach2, r2);
+  }
+  // a particle covering a point of the ball lies within a_I + reach of c; widened by a millionth
+  // (round-off), a few extra candidates cost nothing: covering_among decides
+  const double reach = std::sqrt(reach2) * (1 + 1e-6), slack = 1 + 1e-6;
+  std::int64_t from[3], to[3];
+  for (int d = 0; d < 3; ++d) {
+    const double R = (h_ + reach) * slack;
+    from[d] = std::max<std::int64_t>(std::int64_t(std::floor((c[d] - R - lo_[d]) / h_)), 0);
+    to[d] = std::min<std::int64_t>(std::int64_t(std::floor((c[d] + R - lo_[d]) / h_)), dims_[d] - 1);
+  }
+  const std::size_t first = out.size();
+  for (std::int64_t k = from[2]; k <= to[2]; ++k)
+    for (std::int64_t j = from[1]; j <= to[1]; ++j)
+      for (std::int64_t i = from[0]; i <= to[0]; ++i) {
+        const std::int64_t bin = (k * dims_[1] + j) * dims_[0] + i;
         for (std::int32_t s = start_[bin]; s < start_[bin + 1]; ++s) {
           const std::int32_t I = items_[s];
           const double* p = X_ + 3 * I;
-          const double r2 = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]) + (x[2] - p[2]) * (x[2] - p[2]);
-          if (r2 < radius_[I] * radius_[I]) out.push_back(I);
+          const double r2 = (c[0] - p[0]) * (c[0] - p[0]) + (c[1] - p[1]) * (c[1] - p[1]) + (c[2] - p[2]) * (c[2] - p[2]);
+          const double R = (radius_[I] + reach) * slack;
+          if (r2 < R * R) out.push_back(I);
         }
       }
-  std::sort(out.begin() + first, out.end());
+  std::sort(out.begin() + std::ptrdiff_t(first), out.end());
+}
+
+void NeighbourGrid::covering_among(const double x[3], const std::vector<std::int32_t>& candidates,
+                                   std::vector<std::int32_t>& out) const {
+  for (auto I : candidates)
+    if (covers(x, I)) out.push_back(I);
 }
 
 }  // namespace rk

@@ -34,14 +34,25 @@ void bound_gradients(Model& md) {
                                                       md.dN[3 * k + 2] * md.dN[3 * k + 2]));
 }
 
-// Gauss points: N_I and grad N_I at each point.
-void build_shape_functions(Model& md, const Subdomain& sub, const LocalShapes& shapes) {
+// Gauss points: N_I and grad N_I at each point. One support search per cell (its points share most
+// of their particles), each point's columns picked from it, then the shape functions into arrays sized
+// once (ascending global id).
+void build_shape_functions(Model& md, const LocalShapes& shapes) {
   md.nbr_offsets.assign(1, 0);
+  std::vector<std::int32_t> candidates;
+  for (std::size_t c = 0; c < md.cells; ++c) {
+    const auto g0 = std::size_t(md.cell_points[c]), g1 = std::size_t(md.cell_points[c + 1]);
+    shapes.near_group(&md.point_X[3 * g0], g1 - g0, cell_body(md, c), candidates);
+    for (auto g = g0; g < g1; ++g) {
+      shapes.covering_among(&md.point_X[3 * g], candidates, md.nbr);
+      md.nbr_offsets.push_back(std::int64_t(md.nbr.size()));
+    }
+  }
+  md.N.resize(md.nbr.size()), md.dN.resize(3 * md.nbr.size());
   for (std::size_t g = 0; g < md.m; ++g) {
-    const std::size_t k0 = md.nbr.size();
-    const RkResult r = shapes.append(&md.point_X[3 * g], cell_body(md, std::size_t(sub.point_cell[g])), md.nbr, md.N, md.dN);  // ascending global id
-    require_regular(md, r, &sub.point_X[3 * g], md.nbr.size() - k0, "integration point");
-    md.nbr_offsets.push_back(std::int64_t(md.nbr.size()));
+    const auto k0 = std::size_t(md.nbr_offsets[g]), count = std::size_t(md.nbr_offsets[g + 1]) - k0;
+    const RkResult r = shapes.evaluate(&md.point_X[3 * g], {&md.nbr[k0], count}, &md.N[k0], &md.dN[3 * k0]);
+    require_regular(md, r, &md.point_X[3 * g], count, "integration point");
   }
 }
 
@@ -191,8 +202,13 @@ std::vector<Solid> solids(const Scene& scene, std::vector<std::uint8_t>& body_ma
 
 }  // namespace
 
-Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<double>* initial_X) {
+Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<double>* initial_X, Model* previous) {
   Model md;
+  if (previous) {
+    md.nbr = std::move(previous->nbr), md.N = std::move(previous->N), md.dN = std::move(previous->dN);
+    md.nbr.clear(), md.N.clear(), md.dN.clear();
+    std::vector<std::int64_t>().swap(previous->nbr_offsets);
+  }
   md.rank = int(sub.rank);
   md.ranks = int(sub.ranks);
   md.n = sub.particle_count();
@@ -253,7 +269,7 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   if (scene.discretization.integration == "nodal" && md.m > 0 && sub.face_count() == 0)
     throw Error("subdomain of rank " + std::to_string(md.rank) + " holds no nodal-integration faces; re-run rkprep");
   if (scene.discretization.integration == "nodal") build_smoothed_gradients(md, sub, shapes);
-  else build_shape_functions(md, sub, shapes);
+  else build_shape_functions(md, shapes);
   bound_gradients(md);
 
   md.dies = sub.dies;

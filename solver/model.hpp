@@ -127,8 +127,11 @@ inline int cell_body(const Model& md, std::size_t c) {
 
 // Builds the model from this rank's subdomain: neighbour search and shape functions at the points.
 // Throws rk::Error naming the point if a moment matrix is singular. `initial_X` (3 per local
-// particle): the t = 0 positions when sub.X is an updated reference configuration.
-Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<double>* initial_X = nullptr);
+// particle): the t = 0 positions when sub.X is an updated reference configuration. `previous`: a
+// model whose neighbour lists and shape functions are no longer read (a reference update's), their
+// storage taken over for the new ones (memory already touched, one set of them held, not two).
+Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<double>* initial_X = nullptr,
+                  Model* previous = nullptr);
 
 // Quasi-static forming in explicit time: multiplies the density (masses and wave speed) by `factor`.
 void scale_mass(Model& md, double factor);

@@ -31,6 +31,12 @@ void LocalShapes::covering(const double x[3], int body, std::vector<std::int32_t
                cols.end());
 }
 
+void LocalShapes::near_group(const double* x, std::size_t count, int body, std::vector<std::int32_t>& candidates) const {
+  candidates.clear();
+  grid_.near_group(x, count, candidates);
+  if (bodies_) std::erase_if(candidates, [&](std::int32_t J) { return body_[std::size_t(J)] != body; });
+}
+
 RkResult LocalShapes::append(const double x[3], int body, std::vector<std::int32_t>& cols, std::vector<double>& N,
                              std::vector<double>& dN) const {
   found_.clear();

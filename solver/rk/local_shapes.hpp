@@ -26,6 +26,19 @@ class LocalShapes {
   // Appends the particles of `body` whose supports cover x (the columns append would give, unsorted across calls).
   void covering(const double x[3], int body, std::vector<std::int32_t>& cols) const;
 
+  // One search for a cell's `count` points at x (3 each): into `candidates` (replaced, ascending) the
+  // particles of `body` whose supports may cover one of them; covering_among then gives each point's
+  // columns, those append gives, from them.
+  void near_group(const double* x, std::size_t count, int body, std::vector<std::int32_t>& candidates) const;
+  void covering_among(const double x[3], const std::vector<std::int32_t>& candidates, std::vector<std::int32_t>& cols) const {
+    grid_.covering_among(x, candidates, cols);
+  }
+
+  // N and grad N at x of the columns `cols` (covering's), into N[cols.size()] and dN[3 cols.size()].
+  RkResult evaluate(const double x[3], std::span<const std::int32_t> cols, double* N, double* dN) const {
+    return rk_shape(x, cols, particles_, kernel_, basis_, N, dN);
+  }
+
  private:
   std::vector<double> radius_;
   const std::vector<std::uint8_t>& body_;

@@ -71,7 +71,7 @@ std::vector<std::int32_t> flag_growth(const Model& md, const Scene& scene, const
   const std::size_t total = spacing.size();
   const Kernel kernel = parse_kernel(scene.discretization.kernel);
   std::vector<double> radius(total), reach(total);
-  std::vector<std::int32_t> found, grow;
+  std::vector<std::int32_t> candidates, found, grow;
   for (std::size_t I = 0; I < total; ++I) radius[I] = scene.discretization.dilation * spacing[I], reach[I] = kReach * radius[I];
   const NeighbourGrid grid(Xr.data(), radius.data(), total), near(Xr.data(), reach.data(), total);
   const RkParticles particles{Xr.data(), volume.data(), radius.data()};
@@ -79,14 +79,19 @@ std::vector<std::int32_t> flag_growth(const Model& md, const Scene& scene, const
   for (std::size_t c = 0; c < md.cells; ++c)
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g)
       point_body[std::size_t(g)] = std::uint8_t(cell_body(md, c));
-  for (std::size_t g = 0; g < md.m; ++g) {
-    found.clear();
-    grid.covering(&md.point_X[3 * g], found);
-    std::erase_if(found, [&](std::int32_t J) { return body[std::size_t(J)] != point_body[g]; });
-    if (neighbour_spread(&md.point_X[3 * g], found, particles, kernel) >= kPoor) continue;
-    found.clear();
-    near.covering(&md.point_X[3 * g], found);
-    grow.insert(grow.end(), found.begin(), found.end());
+  for (std::size_t c = 0; c < md.cells; ++c) {
+    const auto g0 = std::size_t(md.cell_points[c]), g1 = std::size_t(md.cell_points[c + 1]);
+    candidates.clear();
+    grid.near_group(&md.point_X[3 * g0], g1 - g0, candidates);
+    for (auto g = g0; g < g1; ++g) {
+      found.clear();
+      grid.covering_among(&md.point_X[3 * g], candidates, found);
+      std::erase_if(found, [&](std::int32_t J) { return body[std::size_t(J)] != point_body[g]; });
+      if (neighbour_spread(&md.point_X[3 * g], found, particles, kernel) >= kPoor) continue;
+      found.clear();
+      near.covering(&md.point_X[3 * g], found);
+      grow.insert(grow.end(), found.begin(), found.end());
+    }
   }
   std::sort(grow.begin(), grow.end());
   grow.erase(std::unique(grow.begin(), grow.end()), grow.end());
@@ -305,11 +310,6 @@ void material_at_particles(const Model& md, const State& st, const Scene& scene,
   }
 }
 
-template <class T>
-void release(std::vector<T>& v) {
-  std::vector<T>().swap(v);
-}
-
 }  // namespace
 
 double largest_strain_since_update(const Model& md, const State& st) {
@@ -389,7 +389,7 @@ void rebuild_on_reference(Model& md, State& st, const Scene& scene, const Comm& 
   std::vector<double> radius(held);
   for (std::size_t k = 0; k < held; ++k) radius[k] = scene.discretization.dilation * spacing[k];
   const NeighbourGrid grid(Xr.data(), radius.data(), held);
-  LocalParticleRequest request{grid, Xr.data(), {}, md.point_X, {}};
+  LocalParticleRequest request{grid, Xr.data(), {}, md.point_X, {}, md.cell_points};
   for (auto node : md.cell_nodes) request.cell_nodes.push_back(std::int32_t(halo.find(md.global_id[node])));
   for (std::size_t I = 0; I < md.n; ++I)
     if (md.owned[I]) request.owned.push_back(std::int32_t(halo.find(md.global_id[I])));
@@ -422,10 +422,9 @@ void rebuild_on_reference(Model& md, State& st, const Scene& scene, const Comm& 
   share_holders(halo, local, mine, md.rank, sub.neighbour_ranks, sub.overlap, comm);
   sub.dies = md.dies;
 
-  // The old points' neighbours and shape functions are not read past here: released before the new
-  // ones are built, so an update holds one set of them, not two (docs/performance.md, "Scale model").
-  release(md.nbr_offsets), release(md.nbr), release(md.N), release(md.dN);
-  Model next = build_model(sub, scene, &X0);
+  // The old points' neighbours and shape functions are not read past here: the new ones are built in
+  // their storage, so an update holds one set of them, not two (docs/performance.md, "Scale model").
+  Model next = build_model(sub, scene, &X0, &md);
   scale_mass(next, md.mass_scaling);
   next.spacing0.clear();
   for (auto h : local) next.spacing0.push_back(halo[std::size_t(h)][kSpacing0]);

@@ -2,6 +2,7 @@
 // and near-boundary particles, a/h = 1.5 and 2 (linear), 2.5 (quadratic).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -126,3 +127,34 @@ TEST(RkShape, SpreadFallsForAFlatNeighbourhood) {
 }
 
 }  // namespace
+
+// One search for a cell's points (near_group, then covering_among per point) gives each point exactly
+// the columns of its own search, in the same order, whatever the supports' sizes: the grouped search
+// builds the shape functions at the start and at every reference update, which must not move a bit.
+TEST(NeighbourGrid, AGroupsSearchGivesEachPointItsOwnColumns) {
+  const double h = 1e-3;
+  Cloud c = lattice(9, h, 0.3, 2.0);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (auto& a : c.a) a *= 0.6 + 0.9 * u(rng);  // supports 1.2-2.7 spacings (grown ones beside t = 0 ones)
+  const rk::NeighbourGrid grid(c.X.data(), c.a.data(), c.a.size());
+  std::size_t points = 0, columns = 0;
+  for (int cell = 0; cell < 200; ++cell) {
+    // a sheared cell's 8 points, some cells reaching past the cloud's faces
+    const double o[3] = {-h + 10 * h * u(rng), -h + 10 * h * u(rng), -h + 10 * h * u(rng)}, e = h * (0.2 + 1.5 * u(rng));
+    std::vector<double> x;
+    for (int q = 0; q < 8; ++q)
+      for (int d = 0; d < 3; ++d) x.push_back(o[d] + ((q >> d) & 1) * e + (d == 0 ? 0.7 * e * ((q >> 2) & 1) : 0.0));
+    std::vector<std::int32_t> candidates, among, own;
+    grid.near_group(x.data(), 8, candidates);
+    ASSERT_TRUE(std::is_sorted(candidates.begin(), candidates.end()));
+    for (int q = 0; q < 8; ++q) {
+      among.clear(), own.clear();
+      grid.covering_among(&x[3 * q], candidates, among);
+      grid.covering(&x[3 * q], own);
+      ASSERT_EQ(among, own) << "cell " << cell << ", point " << q;
+      ++points, columns += own.size();
+    }
+  }
+  EXPECT_GT(columns, 20 * points);  // the points sit among the particles, not beside them
+}
