@@ -308,8 +308,8 @@ def report(res, a):
             if "update_peak_mb_max_rank" in r:
                 md += ["", f"Reference update ({r['size']}, 2 ranks, {r['updates']} in two steps): largest rank "
                        f"{r['no_update_peak_mb_max_rank']:.0f} MiB without, {r['update_peak_mb_max_rank']:.0f} MiB with "
-                       f"({r['update_peak_mb_max_rank'] / r['no_update_peak_mb_max_rank']:.2f}x; the old shape functions "
-                       f"are released before the new are built), {r['update_s']:.2f} s per update."]
+                       f"({r['update_peak_mb_max_rank'] / r['no_update_peak_mb_max_rank']:.2f}x; the new shape functions "
+                       f"are built in the old ones' storage), {r['update_s']:.2f} s per update."]
         md.append("")
     if "forming" in res:
         md += ["## Forming runs, their start, 1 rank", "",
