@@ -73,7 +73,13 @@ std::vector<Subdomain> build_subdomains(const SubdomainRequest& r) {
     for (auto c : cells_of[q])
       request.cell_nodes.insert(request.cell_nodes.end(), &r.mesh.cell_nodes[r.mesh.cell_offsets[c]],
                                 &r.mesh.cell_nodes[r.mesh.cell_offsets[c + 1]]);
-    for (auto g : points_of[q]) request.points.insert(request.points.end(), &r.disc.point_X[3 * g], &r.disc.point_X[3 * g] + 3);
+    std::int64_t last_cell = -1;
+    for (auto g : points_of[q]) {  // one search per cell (its points are contiguous)
+      if (r.disc.point_cell[g] != last_cell)
+        request.point_groups.push_back(std::int32_t(request.points.size() / 3)), last_cell = r.disc.point_cell[g];
+      request.points.insert(request.points.end(), &r.disc.point_X[3 * g], &r.disc.point_X[3 * g] + 3);
+    }
+    request.point_groups.push_back(std::int32_t(request.points.size() / 3));
     for (auto f : faces_of[q]) request.points.insert(request.points.end(), &faces.X[3 * f], &faces.X[3 * f] + 3);
     for (std::size_t I = 0; I < n; ++I)
       if (owner[I] == q) request.owned.push_back(std::int32_t(I));

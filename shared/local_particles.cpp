@@ -15,8 +15,8 @@ std::vector<std::int32_t> local_particles(const LocalParticleRequest& r) {
     r.grid.covering(x, found);
     for (auto I : found) mark[I] = 1;
   };
-  if (r.point_groups.empty())
-    for (std::size_t g = 0; g < r.points.size() / 3; ++g) mark_support(&r.points[3 * g]);
+  const std::size_t grouped = r.point_groups.empty() ? 0 : std::size_t(r.point_groups.back());
+  for (std::size_t g = grouped; g < r.points.size() / 3; ++g) mark_support(&r.points[3 * g]);
   for (std::size_t c = 0; c + 1 < r.point_groups.size(); ++c) {
     const auto g0 = std::size_t(r.point_groups[c]), g1 = std::size_t(r.point_groups[c + 1]);
     found.clear();

@@ -17,8 +17,8 @@ struct LocalParticleRequest {
   std::vector<std::int32_t> cell_nodes;      // the rank's cells' nodes (global ids)
   std::vector<double> points;                // 3 per integration point of the rank
   std::vector<std::int32_t> owned;           // the particles the rank owns (global ids)
-  // optional: groups of nearby points (an integration cell's), point offsets into `points`, each
-  // searched once (NeighbourGrid::near_group); empty: one search per point
+  // optional: groups of nearby points (an integration cell's), offsets into `points` from 0, each
+  // searched once (NeighbourGrid::near_group); the points past the last group one search each
   std::vector<std::int32_t> point_groups;
 };
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "local_particles.hpp"
 #include "neighbour_grid.hpp"
 #include "rk_shape.hpp"
 
@@ -157,4 +158,31 @@ TEST(NeighbourGrid, AGroupsSearchGivesEachPointItsOwnColumns) {
     }
   }
   EXPECT_GT(columns, 20 * points);  // the points sit among the particles, not beside them
+}
+
+// The local particles (rkprep's subdomains, the reference updates' halos) by one search per cell give
+// the set that one search per point gives, a face point left ungrouped included.
+TEST(LocalParticles, GroupedByCellTheSameSetAsPointByPoint) {
+  const double h = 1e-3;
+  Cloud c = lattice(9, h, 0.3, 2.0);
+  const rk::NeighbourGrid grid(c.X.data(), c.a.data(), c.a.size());
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  rk::LocalParticleRequest single{grid, c.X.data(), {}, {}, {}, {}};
+  std::vector<std::int32_t> groups;
+  for (int cell = 0; cell < 12; ++cell) {  // a corner of the cloud: far particles stay out
+    groups.push_back(std::int32_t(single.points.size() / 3));
+    const double o[3] = {3 * h * u(rng), 3 * h * u(rng), 3 * h * u(rng)};
+    for (int q = 0; q < 8; ++q)
+      for (int d = 0; d < 3; ++d) single.points.push_back(o[d] + 0.8 * h * ((q >> d) & 1));
+  }
+  groups.push_back(std::int32_t(single.points.size() / 3));
+  for (int d = 0; d < 3; ++d) single.points.push_back(7.5 * h);  // past the last group: searched alone
+  single.owned = {0, 5};
+  rk::LocalParticleRequest grouped = single;
+  grouped.point_groups = groups;
+  const auto by_point = rk::local_particles(single), by_cell = rk::local_particles(grouped);
+  EXPECT_EQ(by_cell, by_point);
+  EXPECT_GT(by_point.size(), 100u);
+  EXPECT_LT(by_point.size(), c.a.size());
 }
