@@ -69,7 +69,7 @@ std::vector<Subdomain> build_subdomains(const SubdomainRequest& r) {
   // particles.
   std::vector<std::vector<std::int32_t>> local(r.ranks);
   for (int q = 0; q < r.ranks; ++q) {
-    LocalParticleRequest request{grid, r.mesh.X.data(), {}, {}, {}};
+    LocalParticleRequest request{grid, r.mesh.X.data(), {}, {}, {}, {}};
     for (auto c : cells_of[q])
       request.cell_nodes.insert(request.cell_nodes.end(), &r.mesh.cell_nodes[r.mesh.cell_offsets[c]],
                                 &r.mesh.cell_nodes[r.mesh.cell_offsets[c + 1]]);

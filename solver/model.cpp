@@ -51,7 +51,7 @@ void build_shape_functions(Model& md, const LocalShapes& shapes) {
   md.N.resize(md.nbr.size()), md.dN.resize(3 * md.nbr.size());
   for (std::size_t g = 0; g < md.m; ++g) {
     const auto k0 = std::size_t(md.nbr_offsets[g]), count = std::size_t(md.nbr_offsets[g + 1]) - k0;
-    const RkResult r = shapes.evaluate(&md.point_X[3 * g], {&md.nbr[k0], count}, &md.N[k0], &md.dN[3 * k0]);
+    const RkResult r = shapes.evaluate(&md.point_X[3 * g], {md.nbr.data() + k0, count}, md.N.data() + k0, md.dN.data() + 3 * k0);
     require_regular(md, r, &md.point_X[3 * g], count, "integration point");
   }
 }
