@@ -61,10 +61,9 @@ void NeighbourGrid::near_group(const double* x, std::size_t count, std::vector<s
   }
   // a particle covering a point of the ball lies within a_I + reach of c; widened by a millionth
   // (round-off), a few extra candidates cost nothing: covering_among decides
-  const double reach = std::sqrt(reach2) * (1 + 1e-6), slack = 1 + 1e-6;
+  const double reach = std::sqrt(reach2), slack = 1 + 1e-6, R = (h_ + reach) * slack;
   std::int64_t from[3], to[3];
   for (int d = 0; d < 3; ++d) {
-    const double R = (h_ + reach) * slack;
     from[d] = std::max<std::int64_t>(std::int64_t(std::floor((c[d] - R - lo_[d]) / h_)), 0);
     to[d] = std::min<std::int64_t>(std::int64_t(std::floor((c[d] + R - lo_[d]) / h_)), dims_[d] - 1);
   }
@@ -77,8 +76,8 @@ void NeighbourGrid::near_group(const double* x, std::size_t count, std::vector<s
           const std::int32_t I = items_[s];
           const double* p = X_ + 3 * I;
           const double r2 = (c[0] - p[0]) * (c[0] - p[0]) + (c[1] - p[1]) * (c[1] - p[1]) + (c[2] - p[2]) * (c[2] - p[2]);
-          const double R = (radius_[I] + reach) * slack;
-          if (r2 < R * R) out.push_back(I);
+          const double RI = (radius_[I] + reach) * slack;
+          if (r2 < RI * RI) out.push_back(I);
         }
       }
   std::sort(out.begin() + std::ptrdiff_t(first), out.end());
