@@ -754,11 +754,13 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     Section c = top.section("contact");
     s.contact.penalty_scale = c.number("penalty_scale", s.contact.penalty_scale, {0, 1, true, false});
     s.contact.self = c.text("self", "false", {"true", "false"}) == "true";
+    s.contact.damping = c.number("damping", s.contact.damping, {0, 1, false, true});
     c.done();
   }
   {
     Section r = top.section("reference_updates");
     s.reference_updates.strain = r.number("strain", s.reference_updates.strain, {0, 10});
+    s.reference_updates.step_growth = r.number("step_growth", s.reference_updates.step_growth, {1, 10});
     if (s.reference_updates.strain > 0 && s.discretization.ebc_method == "transformation")
       throw Error(name + ": key 'reference_updates.strain' cannot be combined with 'discretization.ebc_method' = "
                   "transformation (its constraint rows are not rebuilt at an update); use nodal");

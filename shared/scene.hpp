@@ -228,6 +228,9 @@ struct Scene {
 
   struct Contact {
     double penalty_scale = 0.25;  // k_I = scale * m_I / dt^2 (< 1: contact never limits the step)
+    // fraction of critical damping, 2 sqrt(k m), of a penalty spring held at its step's limit (k = m / dt^2,
+    // where the step has grown past the one its stiffness was set at: contact/contact_laws.hpp)
+    double damping = 0.2;
     // the part's contact with itself (a fold's faces; solver/contact/part_contact.hpp): off unless
     // asked (it costs every step). Between bodies it is always on.
     bool self = false;
@@ -236,8 +239,12 @@ struct Scene {
   // Reference-configuration updates (solver/rk/reference_update.hpp): when the Green strain of any
   // integration point since the last update exceeds `strain` (norm of E), the shape functions are
   // rebuilt on the current configuration. 0: total Lagrangian throughout.
+  // After an update the step may grow to `step_growth` times the cells' estimate on the new reference's
+  // edges (at most their estimate on the t = 0 edges; time_step.hpp); the contact's stiffness keeps to
+  // the new reference's estimate. 1: the step is that estimate.
   struct ReferenceUpdates {
     double strain = 0;
+    double step_growth = 2;
   } reference_updates;
 
   // Bulk viscosity (solver/material/bulk_viscosity.hpp): in compression the pressure q = rho l |e| (quadratic

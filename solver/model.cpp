@@ -256,14 +256,16 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
     md.cell_material[c] = body_material[std::size_t(cell_body(md, c))];
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) md.point_material[std::size_t(g)] = md.cell_material[c];
   }
-  // The time step's length: the shortest edge at t = 0, and after a reference update the shorter of
-  // that and the edge on the new reference (the step then follows the points' stretch since the
-  // update, which alone would forget a cell's compression before it; supports keep their t = 0 size,
-  // so a stretched cell does not lengthen the step either).
+  // The time step's length: the shortest edge at t = 0 (the supports keep their t = 0 size, so a cell
+  // compressed before an update does not stiffen the material as much as its edge shrank), and after a
+  // reference update also the shorter of that and the edge on the new reference, for the step the
+  // contact's stiffness keeps to (it follows the points' stretch since the update, which alone would
+  // forget a cell's compression before it; a stretched cell does not lengthen either).
   md.cell_h0 = shortest_edges(md, md.X);
+  md.cell_h_reference.clear();
   if (initial_X) {
-    const std::vector<double> now = shortest_edges(md, md.Xr);
-    for (std::size_t c = 0; c < md.cells; ++c) md.cell_h0[c] = std::min(md.cell_h0[c], now[c]);
+    md.cell_h_reference = shortest_edges(md, md.Xr);
+    for (std::size_t c = 0; c < md.cells; ++c) md.cell_h_reference[c] = std::min(md.cell_h0[c], md.cell_h_reference[c]);
   }
   const LocalShapes shapes(md.Xr, sub.volume, md.spacing, md.body, scene);
   if (scene.discretization.integration == "nodal" && md.m > 0 && sub.face_count() == 0)

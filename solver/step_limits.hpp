@@ -8,6 +8,7 @@ namespace rk {
 
 struct StepLimits {
   double dt = 0;                  // the stable step, min over ranks (s)
+  double penalty_dt = 0;          // after a reference update, the contact's step, min over ranks (s; infinite: dt)
   double force_bound = 0;         // the largest force contribution to one particle (fixed-point scale)
   double contact_bound = 0;       // the largest contact force contribution (<= force_bound)
   bool unhealthy = false;         // a rank's stress update or forces are not physical
@@ -20,12 +21,12 @@ struct StepLimits {
 
   // Collective: the limits of all ranks, in one reduction.
   void reduce(const Comm& comm) {
-    double r[10] = {-dt, force_bound, unhealthy ? 1.0 : 0.0, checkpoint_clock ? 1.0 : 0.0, strain_since_update,
-                    symmetry_depth, pressure_ratio, interrupted ? 1.0 : 0.0, reaction_bound, contact_bound};
-    comm.max(r, 10);
+    double r[11] = {-dt, force_bound, unhealthy ? 1.0 : 0.0, checkpoint_clock ? 1.0 : 0.0, strain_since_update,
+                    symmetry_depth, pressure_ratio, interrupted ? 1.0 : 0.0, reaction_bound, contact_bound, -penalty_dt};
+    comm.max(r, 11);
     dt = -r[0], force_bound = r[1], unhealthy = r[2] > 0, checkpoint_clock = r[3] > 0;
     strain_since_update = r[4], symmetry_depth = r[5], pressure_ratio = r[6], interrupted = r[7] > 0;
-    reaction_bound = r[8], contact_bound = r[9];
+    reaction_bound = r[8], contact_bound = r[9], penalty_dt = -r[10];
   }
 };
 

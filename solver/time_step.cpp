@@ -38,18 +38,20 @@ double gershgorin_floor(const double F[9]) {
 namespace {
 
 // dt of cell c's points = this * their smallest stretch (with bulk viscosity, times the point's factor)
-double cell_scale(const Model& md, const State& st, std::size_t c) {
+double cell_scale(const Model& md, const State& st, std::size_t c, const std::vector<double>& h) {
   const double c2 = md.material_of_cell(c).wave_speed2(st.cell_J[c]);
-  return md.cell_h0[c] / std::sqrt(c2);
+  return h[c] / std::sqrt(c2);
 }
 
 }  // namespace
 
-StableStep stable_time_step(const Model& md, const State& st, double cfl, bool damped, std::size_t first) {
+StableStep stable_time_step(const Model& md, const State& st, double cfl, bool damped, std::size_t first,
+                            const std::vector<double>* edges) {
+  const std::vector<double>& h = edges ? *edges : md.cell_h0;
   double dt = std::numeric_limits<double>::infinity();
   std::size_t which = 0;
   auto visit = [&](std::size_t c) {
-    const double scale0 = cell_scale(md, st, c);
+    const double scale0 = cell_scale(md, st, c, h);
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
       const double* F = &st.F[9 * std::size_t(g)];
       const double scale = st.dt_factor.empty() || !damped ? scale0 : scale0 * st.dt_factor[std::size_t(g)];  // bulk viscosity
@@ -76,7 +78,7 @@ StableStep stable_time_step(const Model& md, const State& st, double cfl, bool d
 void cell_time_steps(const Model& md, const State& st, double cfl, double enough, std::vector<double>& dt_cell) {
   dt_cell.assign(md.cells, std::numeric_limits<double>::infinity());
   for (std::size_t c = 0; c < md.cells; ++c) {
-    const double scale0 = cell_scale(md, st, c);
+    const double scale0 = cell_scale(md, st, c, md.cell_h0);
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
       const double* F = &st.F[9 * std::size_t(g)];
       const double scale = st.dt_factor.empty() ? scale0 : scale0 * st.dt_factor[std::size_t(g)];

@@ -3,8 +3,9 @@
 // through F at the integration points (grad_x N = grad_X N F^-1), so the step is measured there, not
 // from how close particles come (their coefficients may crowd without stiffening anything):
 //   dt = CFL * min over cells of h0_c * min_{g in c} sigma_min(F_g) / c_c,
-// h0_c the cell's shortest edge at t = 0 (after a reference update the shorter of that and its edge
-// on the new reference: model.cpp), sigma_min the smallest principal stretch, and
+// h0_c the cell's shortest edge at t = 0 (after a reference update the contact's step takes the
+// shorter of that and its edge on the new reference, Model::cell_h_reference; the step grows at most
+// reference_updates.step_growth times past it), sigma_min the smallest principal stretch, and
 // c_c^2 = (K + 4G/3) / rho the dilatational wave speed at the current density rho = rho0 / Jbar;
 // with bulk viscosity each point's term shrinks by its factor (material/bulk_viscosity.hpp).
 // Why: docs/decisions.md, "Stable time step from the deformation at the integration points".
@@ -22,9 +23,10 @@ struct StableStep {
 };
 
 // `damped`: with bulk viscosity's factors (the step); without them, the undamped estimate. `first`: a
-// cell to measure first (the last step's; the same step whatever it is, only sooner).
+// cell to measure first (the last step's; the same step whatever it is, only sooner). `edges`: the
+// cells' h0 (Model::cell_h0 when null).
 StableStep stable_time_step(const Model& md, const State& st, double cfl, bool damped = true,
-                            std::size_t first = std::size_t(-1));
+                            std::size_t first = std::size_t(-1), const std::vector<double>* edges = nullptr);
 
 // Every cell's own stable step, CFL times the least over its points (with bulk viscosity's factors), into
 // dt_cell (resized to the cells), for the classes of multi-rate steps (subcycles.hpp): exact below

@@ -6,7 +6,11 @@
 //   stable step so far (since the last reference update, which starts a new configuration): tied to the step, so contact never shrinks it (s <= 1), and never softening,
 //   so a stiffness that follows the step's ringing does not pump energy into a ringing contact; at
 //   most m / dt^2 (sqrt(k/m) dt <= 1, half the spring's stability limit) where the step grew back.
-//   The spring stores k d^2 / 2.
+//   The spring stores k d^2 / 2. A spring held at that limit (after a reference update the step grows
+//   past the new reference's step its stiffness keeps to: Scene::reference_updates.step_growth) rings
+//   near the step's own period, so it takes a dashpot of a fraction xi of critical, c = 2 xi sqrt(k m)
+//   = 2 xi m / dt (contact.damping, 0.2: the central difference's limit for the damped spring,
+//   2 (sqrt(1 + xi^2) - xi) = 1.63, stays above its sqrt(k/m) dt = 1). The spring never pulls.
 // - Tangential: Coulomb friction with an elastic stick, a tangential spring of the same stiffness k
 //   loaded by the slip and capped at mu f_n (the return map of penalty friction in the explicit FE
 //   codes); its stiffness held like the normal's, a stuck slave's slip does not grow with the step.
@@ -29,6 +33,19 @@ inline double penalty_stiffness(double penalty_scale, double mass, double dt_min
 // f = k d n: the normal force of a penalty spring of stiffness k compressed by depth d >= 0
 inline void penalty_force(double k, double depth, const double normal[3], double f[3]) {
   for (int i = 0; i < 3; ++i) f[i] = k * depth * normal[i];
+}
+
+// The dashpot of a penalty spring (N s/m): 2 xi m / dt where its stiffness is held at m / dt^2 (the step
+// past the one it was set at: dt^2 s > dt_min^2), 0 elsewhere.
+inline double penalty_damping(double damping, double penalty_scale, double mass, double dt_min, double dt) {
+  return penalty_scale * dt * dt > dt_min * dt_min ? 2 * damping * mass / dt : 0.0;
+}
+
+// f = max(k d - c v_n, 0) n: the spring with its dashpot c, v_n the material's velocity along the normal
+// relative to the obstacle (< 0 approaching); it pushes, never pulls.
+inline void penalty_force(double k, double depth, double c, double vn, const double normal[3], double f[3]) {
+  const double fn = c > 0 ? std::max(k * depth - c * vn, 0.0) : k * depth;
+  for (int i = 0; i < 3; ++i) f[i] = fn * normal[i];
 }
 
 // The relative velocity's part tangential to the obstacle (unit normal n): v_t = v_rel - (v_rel . n) n.

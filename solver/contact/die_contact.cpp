@@ -13,7 +13,7 @@
 namespace rk {
 
 DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<DieSurface>& surfaces)
-    : dies_(scene.dies), surfaces_(surfaces), penalty_scale_(scene.penalty_scale_at_cfl()) {
+    : dies_(scene.dies), surfaces_(surfaces), penalty_scale_(scene.penalty_scale_at_cfl()), damping_(scene.contact.damping) {
   for (const RigidWall& w : scene.rigid_walls) {  // its normal points into the part's side
     Plane p{{w.point[0], w.point[1], w.point[2]}, {w.normal[0], w.normal[1], w.normal[2]}, dies_.size() + planes_.size()};
     planes_.push_back(p);
@@ -273,12 +273,13 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
         const double kI = penalty_stiffness(penalty_scale_, m, dt_min, dt);
         Active a{std::int32_t(s), std::int32_t(k), {}, {}, die ? hit.triangle : -1, 0.0};
         if (die) touched_[triangle0_[k] + std::size_t(hit.triangle)] = 1;
-        penalty_force(kI, depth, hit.normal, a.normal_force);
         double v_rel[3], vt[3];  // the material's velocity relative to the obstacle
         material_value(md, st.v, s, v_rel);
         if (die)
           for (int i = 0; i < 3; ++i) v_rel[i] -= rate * mo->direction[i];
         tangential_velocity(v_rel, hit.normal, vt);
+        const double vn = v_rel[0] * hit.normal[0] + v_rel[1] * hit.normal[1] + v_rel[2] * hit.normal[2];
+        penalty_force(kI, depth, penalty_damping(damping_, penalty_scale_, m, dt_min, dt), vn, hit.normal, a.normal_force);
         if (mu > 0) {  // the elastic stick carried from the last step, loaded by this step's slip
           const double* f_old = carried(last_sticks_, held, {std::int32_t(k), std::int32_t(s)}, by_die);
           coulomb_friction(mu, kI * depth, kI, f_old, hit.normal, vt, dt, a.friction_force);

@@ -9,7 +9,8 @@
 // particles (and nodal points) lying on a symmetry plane are left to the essential BCs, which hold
 // them there both ways; a symmetry plane's normal points to the side of the rank's particles.
 // The pointwise laws are in contact/contact_laws.hpp: penalty k = s m / dt_min^2 (m the particle's mass
-// or the point's rho w_g, dt_min the smallest stable step so far, so contact never shortens it) and Coulomb friction
+// or the point's rho w_g, dt_min the smallest stable step so far, so contact never shortens it; at most m / dt^2,
+// a spring held there damped at contact.damping of critical) and Coulomb friction
 // with an elastic stick of the same k, whose force a slave carries from step to step while it touches the die.
 // A slave is looked up only when its clearance at its last lookup, less how far it and the die may
 // have moved since, may have run out, and a block of slaves only when its least clearance may have.
@@ -205,7 +206,7 @@ class DieContact {
   std::vector<double> driven_;   // per die: the stroke and rate a press set (drive)
   std::vector<std::size_t> triangle0_;  // per die: its first triangle's number over all dies, then the count
   std::vector<std::int64_t> touched_;   // per triangle: touched by this rank's material so far (0 / 1)
-  double penalty_scale_, margin_ = 0;
+  double penalty_scale_, damping_, margin_ = 0;
 };
 
 }  // namespace rk

@@ -1,6 +1,9 @@
 // The pointwise contact laws (solver/contact/contact_laws.hpp) against their closed forms:
 // - the penalty stiffness k = s m / dt^2 and force k d n (its spring's energy k d^2 / 2 is the work
 //   of that force over the depth: checked by the trapezoid rule on a linear force, exact);
+// - the dashpot of a spring held at its step's limit (k = m / dt^2): 2 xi m / dt there, none below it;
+//   a slave loaded onto such a spring by a steady force settles at F / k as the central difference's
+//   closed form says (its roots' modulus sqrt(1 - 2 xi) per step), where the undamped one rings on;
 // - the tangential relative velocity is orthogonal to the normal and leaves the normal part out;
 // - Coulomb with an elastic stick: the force grows as k times the slip while under mu f_n, then
 //   slips at mu f_n, against v_t; the friction's work is the spring's energy plus mu f_n over the
@@ -29,6 +32,42 @@ TEST(ContactLaws, PenaltyIsKTimesDepthAlongTheNormal) {
   rk::penalty_force(k, 0.0, n, f0);
   for (int i = 0; i < 3; ++i) work += 0.5 * (f0[i] + f[i]) * depth * n[i];
   EXPECT_NEAR(work, 0.5 * k * depth * depth, 1e-12 * k * depth * depth);
+}
+
+TEST(ContactLaws, ASpringHeldAtItsStepsLimitIsDampedAndSettles) {
+  const double s = 0.81, m = 2e-3, dt_min = 1e-7, xi = 0.2;
+  // below the limit (dt^2 s <= dt_min^2) no dashpot; past it 2 xi m / dt, the spring at m / dt^2
+  EXPECT_EQ(rk::penalty_damping(xi, s, m, dt_min, 1.1 * dt_min), 0.0);
+  const double dt = 2 * dt_min, k = rk::penalty_stiffness(s, m, dt_min, dt);
+  ASSERT_DOUBLE_EQ(k, m / (dt * dt));
+  ASSERT_DOUBLE_EQ(rk::penalty_damping(xi, s, m, dt_min, dt), 2 * xi * m / dt);
+  EXPECT_EQ(rk::penalty_damping(0.0, s, m, dt_min, dt), 0.0);
+  // the dashpot resists the approach, and the spring with it never pulls on a slave leaving fast
+  const double n[3] = {0, 0, 1};
+  double f[3];
+  rk::penalty_force(k, 1e-6, 2 * xi * m / dt, -0.1, n, f);
+  EXPECT_DOUBLE_EQ(f[2], k * 1e-6 + 2 * xi * m / dt * 0.1);
+  rk::penalty_force(k, 1e-6, 2 * xi * m / dt, 100.0, n, f);
+  EXPECT_EQ(f[2], 0.0);
+  // A slave pressed onto the obstacle by a steady force F from rest at zero depth, stepped as the
+  // solver steps it (the force from the depth at t^n and the velocity v^{n-1/2}): with
+  // omega dt = 1 the depth's error e obeys e'' = -e - 2 xi (e - e_prev), roots of
+  // lambda^2 - (1 - 2 xi) lambda + (1 - 2 xi) = 0, of modulus r = sqrt(1 - 2 xi) = 0.775 at xi = 0.2:
+  // the error after n steps is C r^n of F / k, C = 1.3 for these roots (1 / sin of their argument,
+  // 50 degrees), bounded here by 2 r^n; undamped (r = 1) it keeps ringing at the amplitude F / k.
+  const double F = 50.0;
+  auto settle = [&](double damping, int steps, bool last_only) {
+    double depth = 0, v = 0, worst = 0;  // v along -n: into the obstacle
+    for (int i = 1; i <= steps; ++i) {
+      rk::penalty_force(k, depth, rk::penalty_damping(damping, s, m, dt_min, dt), -v, n, f);
+      v += dt * (F - f[2]) / m;
+      depth = std::max(depth + dt * v, 0.0);
+      if (i == steps || (!last_only && i > steps - 10)) worst = std::max(worst, std::abs(depth - F / k) / (F / k));
+    }
+    return worst;
+  };
+  for (const int steps : {20, 40, 60}) EXPECT_LT(settle(xi, steps, true), 2 * std::pow(std::sqrt(1 - 2 * xi), steps));
+  EXPECT_GT(settle(0.0, 60, false), 0.5);
 }
 
 TEST(ContactLaws, TangentialVelocityDropsTheNormalPart) {
