@@ -260,12 +260,17 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   // compressed before an update does not stiffen the material as much as its edge shrank), and after a
   // reference update also the shorter of that and the edge on the new reference, for the step the
   // contact's stiffness keeps to (it follows the points' stretch since the update, which alone would
-  // forget a cell's compression before it; a stretched cell does not lengthen either).
+  // forget a cell's compression before it; a stretched cell does not lengthen either); the step's own
+  // edge at most step_growth times that one.
   md.cell_h0 = shortest_edges(md, md.X);
   md.cell_h_reference.clear();
   if (initial_X) {
     md.cell_h_reference = shortest_edges(md, md.Xr);
-    for (std::size_t c = 0; c < md.cells; ++c) md.cell_h_reference[c] = std::min(md.cell_h0[c], md.cell_h_reference[c]);
+    const double growth = scene.reference_updates.step_growth;
+    for (std::size_t c = 0; c < md.cells; ++c) {
+      md.cell_h_reference[c] = std::min(md.cell_h0[c], md.cell_h_reference[c]);
+      md.cell_h0[c] = std::min(md.cell_h0[c], growth * md.cell_h_reference[c]);
+    }
   }
   const LocalShapes shapes(md.Xr, sub.volume, md.spacing, md.body, scene);
   if (scene.discretization.integration == "nodal" && md.m > 0 && sub.face_count() == 0)

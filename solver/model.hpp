@@ -69,9 +69,11 @@ struct Model {
   std::size_t cells = 0;
   std::vector<std::int64_t> cell_global_id;
   std::vector<std::int32_t> cell_points, cell_node_offsets, cell_nodes;
-  std::vector<double> cell_h0;  // shortest edge at t = 0, for the stable time step
-  // after a reference update, the shorter of that and the edge on the new reference: the contact's step
-  // (time_step.hpp); empty before the first
+  // shortest edge at t = 0, for the stable time step (after a reference update at most
+  // reference_updates.step_growth times cell_h_reference)
+  std::vector<double> cell_h0;
+  // after a reference update, the shorter of the t = 0 edge and the edge on the new reference: the
+  // contact's step (time_step.hpp); empty before the first
   std::vector<double> cell_h_reference;
 
   // points whose supports hold a shared particle (their forces are sent first) and the others,

@@ -307,16 +307,10 @@ void Simulation::time_step() {
   double bound = contact_bound_;
   for (std::size_t g = 0; g < md_.m; ++g) bound = std::max(bound, st_.force_bound[g]);
   healthy_ = stress_.ok && std::isfinite(bound);
-  if (sync_) stable_ = stable_time_step(md_, st_, scene_.time.cfl, true, stable_.cell);
-  // after a reference update, the contact's step on the new reference's edges: its stiffness keeps to it,
-  // the step grows at most step_growth times past it (time_step.hpp, contact/contact_laws.hpp)
+  // and after a reference update the contact's step, on the new reference's edges: its stiffness keeps to
+  // it, the step grows at most step_growth times past it (time_step.hpp, contact/contact_laws.hpp)
   limits_.penalty_dt = std::numeric_limits<double>::infinity();  // (dt itself, before an update)
-  if (!md_.cell_h_reference.empty()) {
-    const StableStep reference = stable_time_step(md_, st_, scene_.time.cfl, true, stable_.cell, &md_.cell_h_reference);
-    limits_.penalty_dt = reference.dt;
-    const double grown = scene_.reference_updates.step_growth * reference.dt;
-    if (grown < stable_.dt) stable_ = {grown, reference.cell};
-  }
+  if (sync_) stable_ = stable_time_step(md_, st_, scene_.time.cfl, true, stable_.cell, &limits_.penalty_dt);
   if (subcycles_ && sync_)  // each cell's, for the classes (a cycle holds the step of its start)
     cell_time_steps(md_, st_, scene_.time.cfl, double(1 << subcycles_->max_levels()) * stable_.dt, cell_dt_);
   if (frequency_) stable_.dt *= frequency_->step_ratio(md_, st_, comm_);  // the same on every rank

@@ -37,33 +37,40 @@ double gershgorin_floor(const double F[9]) {
 
 namespace {
 
-// dt of cell c's points = this * their smallest stretch (with bulk viscosity, times the point's factor)
-double cell_scale(const Model& md, const State& st, std::size_t c, const std::vector<double>& h) {
-  const double c2 = md.material_of_cell(c).wave_speed2(st.cell_J[c]);
-  return h[c] / std::sqrt(c2);
+// dt of cell c's points = h[c] / this * their smallest stretch (with bulk viscosity, times the point's factor)
+double wave_speed(const Model& md, const State& st, std::size_t c) {
+  return std::sqrt(md.material_of_cell(c).wave_speed2(st.cell_J[c]));
 }
 
 }  // namespace
 
 StableStep stable_time_step(const Model& md, const State& st, double cfl, bool damped, std::size_t first,
-                            const std::vector<double>* edges) {
-  const std::vector<double>& h = edges ? *edges : md.cell_h0;
-  double dt = std::numeric_limits<double>::infinity();
+                            double* on_reference) {
+  const bool both = on_reference && !md.cell_h_reference.empty();
+  double dt = std::numeric_limits<double>::infinity(), dt_reference = dt;
   std::size_t which = 0;
   auto visit = [&](std::size_t c) {
-    const double scale0 = cell_scale(md, st, c, h);
+    const double wave = wave_speed(md, st, c);
+    const double scale0 = md.cell_h0[c] / wave, reference0 = both ? md.cell_h_reference[c] / wave : 0.0;
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
       const double* F = &st.F[9 * std::size_t(g)];
-      const double scale = st.dt_factor.empty() || !damped ? scale0 : scale0 * st.dt_factor[std::size_t(g)];  // bulk viscosity
+      const double factor = st.dt_factor.empty() || !damped ? 1.0 : st.dt_factor[std::size_t(g)];  // bulk viscosity
+      const double scale = scale0 * factor, reference = reference0 * factor;
       // Cheap lower bounds first: lambda_min(C) >= det C / (lambda_mid lambda_max) >= 4 J^2 / (tr C)^2,
       // and Gershgorin's min_i (C_ii - sum_j!=i |C_ij|), the tight one near F = I (after a reference
-      // update, where the first leaves most points to the eigenvalue formula's acos and cos)
+      // update, where the first leaves most points to the eigenvalue formula's acos and cos); a point
+      // is measured where it may set either least
       double trC = 0;
       for (int k = 0; k < 9; ++k) trC += F[k] * F[k];
-      if (scale * 2 * std::abs(st.J[g]) / trC >= dt) continue;  // cannot set the step
-      if (scale * std::sqrt(std::max(gershgorin_floor(F), 0.0)) >= dt) continue;
-      const double dtg = scale * smallest_stretch(F, st.J[g]);
-      if (dtg < dt) dt = dtg, which = c;
+      const double floor1 = 2 * std::abs(st.J[g]) / trC;
+      bool step = scale * floor1 < dt, ref = both && reference * floor1 < dt_reference;
+      if (!step && !ref) continue;  // cannot set either
+      const double floor2 = std::sqrt(std::max(gershgorin_floor(F), 0.0));
+      step = step && scale * floor2 < dt, ref = ref && reference * floor2 < dt_reference;
+      if (!step && !ref) continue;
+      const double stretch = smallest_stretch(F, st.J[g]);
+      if (step && scale * stretch < dt) dt = scale * stretch, which = c;
+      if (ref) dt_reference = std::min(dt_reference, reference * stretch);
     }
   };
   // the cell that set the last step first: its step, near the new one, lets the bounds skip the other
@@ -72,13 +79,14 @@ StableStep stable_time_step(const Model& md, const State& st, double cfl, bool d
   if (first < md.cells) visit(first);
   for (std::size_t c = 0; c < md.cells; ++c)
     if (c != first) visit(c);
+  if (on_reference) *on_reference = cfl * dt_reference;
   return {cfl * dt, which};
 }
 
 void cell_time_steps(const Model& md, const State& st, double cfl, double enough, std::vector<double>& dt_cell) {
   dt_cell.assign(md.cells, std::numeric_limits<double>::infinity());
   for (std::size_t c = 0; c < md.cells; ++c) {
-    const double scale0 = cell_scale(md, st, c, md.cell_h0);
+    const double scale0 = md.cell_h0[c] / wave_speed(md, st, c);
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
       const double* F = &st.F[9 * std::size_t(g)];
       const double scale = st.dt_factor.empty() ? scale0 : scale0 * st.dt_factor[std::size_t(g)];

@@ -4,8 +4,9 @@
 // from how close particles come (their coefficients may crowd without stiffening anything):
 //   dt = CFL * min over cells of h0_c * min_{g in c} sigma_min(F_g) / c_c,
 // h0_c the cell's shortest edge at t = 0 (after a reference update the contact's step takes the
-// shorter of that and its edge on the new reference, Model::cell_h_reference; the step grows at most
-// reference_updates.step_growth times past it), sigma_min the smallest principal stretch, and
+// shorter of that and its edge on the new reference, Model::cell_h_reference, and h0_c is at most
+// reference_updates.step_growth times that: the step grows at most so far past the contact's),
+// sigma_min the smallest principal stretch, and
 // c_c^2 = (K + 4G/3) / rho the dilatational wave speed at the current density rho = rho0 / Jbar;
 // with bulk viscosity each point's term shrinks by its factor (material/bulk_viscosity.hpp).
 // Why: docs/decisions.md, "Stable time step from the deformation at the integration points".
@@ -23,10 +24,11 @@ struct StableStep {
 };
 
 // `damped`: with bulk viscosity's factors (the step); without them, the undamped estimate. `first`: a
-// cell to measure first (the last step's; the same step whatever it is, only sooner). `edges`: the
-// cells' h0 (Model::cell_h0 when null).
+// cell to measure first (the last step's; the same step whatever it is, only sooner). `on_reference`:
+// set to the step on Model::cell_h_reference (after a reference update, the contact's; infinite before
+// one), found in the same pass.
 StableStep stable_time_step(const Model& md, const State& st, double cfl, bool damped = true,
-                            std::size_t first = std::size_t(-1), const std::vector<double>* edges = nullptr);
+                            std::size_t first = std::size_t(-1), double* on_reference = nullptr);
 
 // Every cell's own stable step, CFL times the least over its points (with bulk viscosity's factors), into
 // dt_cell (resized to the cells), for the classes of multi-rate steps (subcycles.hpp): exact below
