@@ -114,6 +114,51 @@ TEST(TimeStep, StableStepIsTheLeastOverThePointsFromAnyFirstCell) {
   }
 }
 
+// After a reference update the same pass finds the contact's step on the cells' edges on the new
+// reference (Model::cell_h_reference): each least exact, to the bit, whichever cell sets either and
+// whichever is first. The reference's edges here shrink in other cells than the step's, 3x, so a point
+// that cannot set the step may set the contact's; the step's edges are those the model sets, at most
+// step_growth times the reference's (4 here, so the compressed cell does not set the step).
+TEST(TimeStep, TheContactsStepOnTheReferencesEdgesInTheSamePass) {
+  const std::size_t cells = 24;
+  rk::Model md = copper_cells(cells);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(0, 1);
+  rk::State st = at_rest(md);
+  for (std::size_t g = 0; g < md.m; ++g) {
+    const double a = 1 + 0.01 * U(rng), b = 1 - 0.01 * U(rng);  // near F = I: the bounds skip most points
+    stretch_between_rotations(a, b, 1, &st.F[9 * g]);
+    st.J[g] = a * b;
+  }
+  const double wave = std::sqrt(md.materials[0].wave_speed2(1.0));
+  for (std::size_t c = 0; c < cells; ++c) st.cell_J[c] = 1;
+  for (std::size_t target = 0; target < cells; target += 5) {
+    md.cell_h_reference.assign(cells, 1e-3);
+    md.cell_h_reference[(target + 7) % cells] /= 3;  // compressed before the update
+    md.cell_h0.assign(cells, 1e-3);
+    for (std::size_t c = 0; c < cells; ++c) md.cell_h0[c] = std::min(md.cell_h0[c], 4 * md.cell_h_reference[c]);
+    md.cell_h0[target] *= 0.9;
+    double least = std::numeric_limits<double>::infinity(), reference = least;
+    for (std::size_t c = 0; c < cells; ++c)
+      for (auto g = std::size_t(md.cell_points[c]); g < std::size_t(md.cell_points[c + 1]); ++g) {
+        const double stretch = rk::smallest_stretch(&st.F[9 * g], st.J[g]);
+        least = std::min(least, md.cell_h0[c] / wave * stretch);
+        reference = std::min(reference, md.cell_h_reference[c] / wave * stretch);
+      }
+    for (std::size_t first = 0; first <= cells; first += 3) {
+      double on_reference = 0;
+      const rk::StableStep s = rk::stable_time_step(md, st, 0.9, true, first, &on_reference);
+      ASSERT_EQ(s.dt, 0.9 * least) << "the step, cell " << first << " first";
+      ASSERT_EQ(on_reference, 0.9 * reference) << "the contact's, cell " << first << " first";
+      EXPECT_GT(s.dt, on_reference) << "the edges 3x apart in one cell, the step grown past the contact's";
+    }
+  }
+  md.cell_h_reference.clear();  // before an update: none
+  double none = 0;
+  rk::stable_time_step(md, st, 0.9, true, 0, &none);
+  EXPECT_EQ(none, std::numeric_limits<double>::infinity());
+}
+
 // Each cell's own step, for the classes of multi-rate steps: exact (CFL times the least over its points,
 // to the bit) wherever it is below `enough`, and at least `enough` wherever the cheap bounds skipped it.
 // Cells of two sizes and three strains, 4 and 8x apart, as an impact's crushed foot beside its shank.
