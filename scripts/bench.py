@@ -14,10 +14,11 @@
    Wang, Li, Han & Zhong 2007 (Development of parallel 3D RKPM meshless bulk forming simulation system), with the time in communication per step and the partition report;
 5. size: rkprep at 10k, 100k and 1M particles (wall time, peak memory), the 100k bar's peak with and without
    a reference update, and the 1M bar run for a few steps on 2 ranks (memory per rank and per integration point);
-6. forming: the first part of four forming runs on one rank, two of them at two CFLs (the power law's upsetting, the hot
-   upsetting's Hansel-Spittel law with heat, the back extrusion's contact and reference updates, the
-   frictionless wheel forging; the last two at the default CFL and at 0.9): ns per update and per particle
-   step, the phases' shares, the die force and work reached, and each speed-up at 0.9 with its work's change.
+6. forming: the first part of four forming runs on one rank (the power law's upsetting, the hot upsetting's
+   Hansel-Spittel law with heat, the back extrusion's contact and reference updates, the frictionless wheel
+   forging; the last two also at time.cfl=0.5, and the back extrusion with reference_updates.step_growth=1):
+   ns per update and per particle step, the phases' shares, the die force and work reached, and the
+   defaults' speed-up against each other setting with its work's change.
 Timings are ratios within one run on one machine. Writes WORK/bench.md and WORK/bench.json.
   scripts/bench.py [--bin build/bin] [--work build/bench] [--skip calculix size ...]
 """

@@ -308,9 +308,11 @@ void Simulation::time_step() {
   for (std::size_t g = 0; g < md_.m; ++g) bound = std::max(bound, st_.force_bound[g]);
   healthy_ = stress_.ok && std::isfinite(bound);
   // and after a reference update the contact's step, on the new reference's edges: its stiffness keeps to
-  // it, the step grows at most step_growth times past it (time_step.hpp, contact/contact_laws.hpp)
+  // it, the step grows at most step_growth times past it (time_step.hpp, contact/contact_laws.hpp); the
+  // step from the highest frequency is the contact's own (the ratio below undoes any growth)
   limits_.penalty_dt = std::numeric_limits<double>::infinity();  // (dt itself, before an update)
-  if (sync_) stable_ = stable_time_step(md_, st_, scene_.time.cfl, true, stable_.cell, &limits_.penalty_dt);
+  if (sync_)
+    stable_ = stable_time_step(md_, st_, scene_.time.cfl, true, stable_.cell, frequency_ ? nullptr : &limits_.penalty_dt);
   if (subcycles_ && sync_)  // each cell's, for the classes (a cycle holds the step of its start)
     cell_time_steps(md_, st_, scene_.time.cfl, double(1 << subcycles_->max_levels()) * stable_.dt, cell_dt_);
   if (frequency_) stable_.dt *= frequency_->step_ratio(md_, st_, comm_);  // the same on every rank
@@ -718,7 +720,8 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
 // enough for the penalty contact: a ram of modeled mass M / force_factor against slaves of mass sum m
 // in contact, k = s m / dt^2 each, is stable while M / force_factor > s sum m / 4; the slaves
 // (particles and points) hold at most twice the part's mass, so M / force_factor >= s x the part's
-// mass (mass-scaled) keeps a margin of 2.
+// mass (mass-scaled) keeps a margin of 2. After a reference update the step grows past the one the
+// stiffness keeps to (reference_updates.step_growth g), so there the springs take min(s g^2, 1) m / dt^2.
 void Simulation::start_presses(double h_min) {
   std::size_t rams = 0;
   for (const Die& d : scene_.dies) rams += d.motion.driven() ? 1 : 0;
@@ -729,7 +732,8 @@ void Simulation::start_presses(double h_min) {
     if (md_.owned[I]) part_mass += md_.mass[I];
   comm_.sum(&part_mass, 1);
   for (const Die& d : scene_.dies) {
-    const double least = scene_.penalty_scale_at_cfl() * part_mass * d.force_factor;
+    const double s = scene_.penalty_scale_at_cfl(), g = scene_.reference_updates.step_growth;
+    const double least = (scene_.reference_updates.strain > 0 ? std::max(s, std::min(s * g * g, 1.0)) : s) * part_mass * d.force_factor;
     if (!d.motion.driven() || d.motion.ram.mass >= least) continue;
     char text[300];
     std::snprintf(text, sizeof text, "die '%s': a ram_mass of %.4g kg is too light for the penalty contact against the part "

@@ -35,7 +35,7 @@ namespace rk {
 struct DieTotals {       // per die, per rigid wall, and one for the symmetry planes, over this rank's slaves
   double force[3] = {0, 0, 0};  // force of the die on the modeled part this step (N)
   double press_work = 0;        // work done by the die on the part, cumulative (J)
-  double friction_work = 0;     // dissipated by friction, cumulative (J), >= 0
+  double friction_work = 0;     // dissipated by friction and the penalty's dashpot, cumulative (J), >= 0
   double contact_work = 0;      // work of normal + friction forces on the part, cumulative (J)
   double max_penetration = 0;   // this step, particles and points (m)
   double spring_energy = 0;     // energy stored in the penalty springs now, sum k d^2 / 2 (J)
@@ -134,6 +134,7 @@ class DieContact {
     double normal_force[3], friction_force[3];
     std::int32_t triangle;         // of the die's surface (-1: a plane)
     double stick_stored;           // the energy this step put into its elastic stick (J; what its friction does not dissipate)
+    double dashpot;                // the dashpot's part of the normal force, along it (N; contact_laws.hpp)
   };
   Row row(const Model& md, std::size_t s) const;
   DieHit die_hit(std::size_t k, const double x[3], double t) const;  // x's closest point on die k at time t

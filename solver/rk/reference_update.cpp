@@ -428,7 +428,8 @@ void rebuild_on_reference(Model& md, State& st, const Scene& scene, const Comm& 
   scale_mass(next, md.mass_scaling);
   next.spacing0.clear();
   for (auto h : local) next.spacing0.push_back(halo[std::size_t(h)][kSpacing0]);
-  // The stable step takes the shorter of the cells' t = 0 edges and their edges now (build_model).
+  // The contact's stable step takes the shorter of the cells' t = 0 edges and their edges now, the step at
+  // most step_growth times that (build_model).
   st.u.assign(3 * next.n, 0.0), st.v.assign(3 * next.n, 0.0), st.u_ref.assign(3 * next.n, 0.0);
   for (std::size_t k = 0; k < next.n; ++k)
     for (int i = 0; i < 3; ++i) {

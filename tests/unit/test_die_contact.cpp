@@ -23,6 +23,7 @@
 //   direction, and a stick that only loads its spring dissipates nothing.
 // - The sticks carried to another contact on the same slaves (a reference update's, a restart's)
 //   load on exactly as if never moved; a stick naming a particle this rank does not hold is refused.
+// - A spring held at its step's limit is damped on the approach, and its dashpot's dissipation counted.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -240,6 +241,41 @@ rk::Scene with_friction(const Upsetting& u, double mu) {
   rk::Scene scene = u.scene;
   scene.dies[0].friction = mu;
   return scene;
+}
+
+// A spring held at its step's limit (the step twice the one its stiffness keeps to: k = m / dt^2) takes
+// the dashpot 2 xi m / dt on the material's normal velocity relative to the die (contact_laws.hpp):
+// material moving with the die feels k d alone; material closing on it at w more feels k d + c w per
+// slave, and the step's dissipation, sum c w^2 dt, is in friction_work; at the step the stiffness keeps
+// to, no dashpot. Closed forms per slave on the lifted billet (the die's face z = 10 mm, normal -z).
+TEST(DieContact, ASpringHeldAtItsStepsLimitDampsTheApproach) {
+  const Upsetting u;
+  const Lifted lifted(u);
+  const double xi = u.scene.contact.damping, dt_min = Lifted::dt, dt = 2 * dt_min, s = u.scene.penalty_scale_at_cfl();
+  ASSERT_GT(s * dt * dt, dt_min * dt_min);
+  ASSERT_EQ(xi, 0.2);
+  const std::array<double, 3>& dir = u.scene.dies[0].motion.direction;
+  rk::DieContact probe(u.md, u.scene, u.dies);
+  const double rate = probe.rate(0, 0.0);
+  ASSERT_GT(rate, 0.0);
+  double spring = 0, dashpot = 0, below = 0;  // sums over the slaves of m d / dt^2, 2 xi m / dt, s m d / dt_min^2
+  for (const auto& sl : lifted.slaves)
+    spring += sl.mass * sl.depth / (dt * dt), dashpot += 2 * xi * sl.mass / dt, below += s * sl.mass * sl.depth / (dt_min * dt_min);
+  for (const double w : {0.0, 0.5, 2.0}) {  // closing speed on the die (m/s)
+    const double v[3] = {rate * dir[0], rate * dir[1], rate * dir[2] + w};
+    rk::State st = Lifted::state(u.md, v);
+    rk::DieContact contact(u.md, u.scene, u.dies);
+    contact.compute(u.md, st, 0.0, dt, dt_min);
+    const rk::DieTotals& tot = contact.totals()[0];
+    ASSERT_EQ(std::size_t(tot.contacts + tot.point_contacts), lifted.slaves.size());
+    EXPECT_NEAR(-tot.force[2] / (spring + dashpot * w), 1.0, 1e-9) << "closing at " << w << " m/s";
+    contact.account(u.md, st, st.v, dt, 0.0);
+    if (w > 0) EXPECT_NEAR(tot.friction_work / (dashpot * w * w * dt), 1.0, 1e-9) << "closing at " << w << " m/s";
+    else EXPECT_EQ(tot.friction_work, 0.0);
+    rk::DieContact short_step(u.md, u.scene, u.dies);
+    short_step.compute(u.md, st, 0.0, dt_min, dt_min);
+    EXPECT_NEAR(-short_step.totals()[0].force[2] / below, 1.0, 1e-9) << "no dashpot at the stiffness's own step";
+  }
 }
 
 TEST(DieContact, FrictionsStickLoadsWithTheSlipWithinMuFn) {
