@@ -271,7 +271,7 @@ TEST(DieContact, ASpringHeldAtItsStepsLimitDampsTheApproach) {
     EXPECT_NEAR(-tot.force[2] / (spring + dashpot * w), 1.0, 1e-9) << "closing at " << w << " m/s";
     contact.account(u.md, st, st.v, dt, 0.0);
     if (w > 0) EXPECT_NEAR(tot.friction_work / (dashpot * w * w * dt), 1.0, 1e-9) << "closing at " << w << " m/s";
-    else EXPECT_EQ(tot.friction_work, 0.0);
+    else EXPECT_LT(std::abs(tot.friction_work), dashpot * 1e-12 * dt) << "moving with the die: round-off (a closing speed under 1 um/s)";
     rk::DieContact short_step(u.md, u.scene, u.dies);
     short_step.compute(u.md, st, 0.0, dt_min, dt_min);
     EXPECT_NEAR(-short_step.totals()[0].force[2] / below, 1.0, 1e-9) << "no dashpot at the stiffness's own step";
