@@ -240,8 +240,9 @@ struct Scene {
   // integration point since the last update exceeds `strain` (norm of E), the shape functions are
   // rebuilt on the current configuration. 0: total Lagrangian throughout.
   // After an update the step may grow to `step_growth` times the cells' estimate on the new reference's
-  // edges (at most their estimate on the t = 0 edges; time_step.hpp); the contact's stiffness keeps to
-  // the new reference's estimate. 1: the step is that estimate.
+  // edges at the default CFL (0.9; at a larger time.cfl no further than that CFL's estimate), at most
+  // their estimate on the t = 0 edges (time_step.hpp); the contact's stiffness keeps to the new
+  // reference's estimate. 1: the step is that estimate.
   struct ReferenceUpdates {
     double strain = 0;
     double step_growth = 2;

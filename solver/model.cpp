@@ -266,7 +266,11 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   md.cell_h_reference.clear();
   if (initial_X) {
     md.cell_h_reference = shortest_edges(md, md.Xr);
-    const double growth = scene.reference_updates.step_growth;
+    // the growth bounded so that the step stays within step_growth times the new reference's step at the
+    // default CFL, at any time.cfl (not below the reference's own step): the contact's springs, whose
+    // stiffness does not follow the CFL, soften no more than there, and the step stays within the one the
+    // stability study's reference updates at CFL 2.0 hold stable (docs/decisions.md)
+    const double growth = std::max(1.0, scene.reference_updates.step_growth * Scene::default_cfl() / scene.time.cfl);
     for (std::size_t c = 0; c < md.cells; ++c) {
       md.cell_h_reference[c] = std::min(md.cell_h0[c], md.cell_h_reference[c]);
       md.cell_h0[c] = std::min(md.cell_h0[c], growth * md.cell_h_reference[c]);
