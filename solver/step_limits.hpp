@@ -2,13 +2,15 @@
 // stable step and the force bound limit the step; the rest are flags and measures that decide what
 // the next steps do (a checkpoint, a reference update, a stop).
 #pragma once
+#include <limits>
+
 #include "parallel/comm.hpp"
 
 namespace rk {
 
 struct StepLimits {
   double dt = 0;                  // the stable step, min over ranks (s)
-  double penalty_dt = 0;          // after a reference update, the contact's step, min over ranks (s; infinite: dt)
+  double penalty_dt = std::numeric_limits<double>::infinity();  // after a reference update, the contact's step, min over ranks (s; infinite: dt)
   double force_bound = 0;         // the largest force contribution to one particle (fixed-point scale)
   double contact_bound = 0;       // the largest contact force contribution (<= force_bound)
   bool unhealthy = false;         // a rank's stress update or forces are not physical

@@ -37,7 +37,8 @@ double gershgorin_floor(const double F[9]) {
 
 namespace {
 
-// dt of cell c's points = h[c] / this * their smallest stretch (with bulk viscosity, times the point's factor)
+// the dilatational wave speed in cell c: a point's dt = h_c / this * its smallest stretch (with bulk
+// viscosity, times the point's factor)
 double wave_speed(const Model& md, const State& st, std::size_t c) {
   return std::sqrt(md.material_of_cell(c).wave_speed2(st.cell_J[c]));
 }

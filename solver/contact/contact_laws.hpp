@@ -30,22 +30,19 @@ inline double penalty_stiffness(double penalty_scale, double mass, double dt_min
   return std::min(penalty_scale * mass / (dt_min * dt_min), mass / (dt * dt));
 }
 
-// f = k d n: the normal force of a penalty spring of stiffness k compressed by depth d >= 0
-inline void penalty_force(double k, double depth, const double normal[3], double f[3]) {
-  for (int i = 0; i < 3; ++i) f[i] = k * depth * normal[i];
-}
-
 // The dashpot of a penalty spring (N s/m): 2 xi m / dt where its stiffness is held at m / dt^2 (the step
 // past the one it was set at: dt^2 s > dt_min^2), 0 elsewhere.
 inline double penalty_damping(double damping, double penalty_scale, double mass, double dt_min, double dt) {
   return penalty_scale * dt * dt > dt_min * dt_min ? 2 * damping * mass / dt : 0.0;
 }
 
-// f = max(k d - c v_n, 0) n: the spring with its dashpot c, v_n the material's velocity along the normal
-// relative to the obstacle (< 0 approaching); it pushes, never pulls.
-inline void penalty_force(double k, double depth, double c, double vn, const double normal[3], double f[3]) {
-  const double fn = c > 0 ? std::max(k * depth - c * vn, 0.0) : k * depth;
+// f = f_n n, f_n = max(k d - c v_n, 0): the normal force of a penalty spring of stiffness k compressed by
+// depth d >= 0, with its dashpot c (0: none), v_n the material's velocity along the normal relative to the
+// obstacle (< 0 approaching); it pushes, never pulls. Returns f_n.
+inline double penalty_force(double k, double depth, double c, double vn, const double normal[3], double f[3]) {
+  const double fn = std::max(k * depth - c * vn, 0.0);
   for (int i = 0; i < 3; ++i) f[i] = fn * normal[i];
+  return fn;
 }
 
 // The relative velocity's part tangential to the obstacle (unit normal n): v_t = v_rel - (v_rel . n) n.

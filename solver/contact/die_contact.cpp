@@ -279,9 +279,9 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
           for (int i = 0; i < 3; ++i) v_rel[i] -= rate * mo->direction[i];
         tangential_velocity(v_rel, hit.normal, vt);
         const double vn = v_rel[0] * hit.normal[0] + v_rel[1] * hit.normal[1] + v_rel[2] * hit.normal[2];
-        penalty_force(kI, depth, penalty_damping(damping_, penalty_scale_, m, dt_min, dt), vn, hit.normal, a.normal_force);
-        for (int i = 0; i < 3; ++i) a.dashpot += a.normal_force[i] * hit.normal[i];
-        a.dashpot -= kI * depth;
+        const double fn = penalty_force(kI, depth, penalty_damping(damping_, penalty_scale_, m, dt_min, dt), vn, hit.normal,
+                                        a.normal_force);
+        a.dashpot = fn > 0 ? 1 - kI * depth / fn : 0.0;
         if (mu > 0) {  // the elastic stick carried from the last step, loaded by this step's slip
           const double* f_old = carried(last_sticks_, held, {std::int32_t(k), std::int32_t(s)}, by_die);
           coulomb_friction(mu, kI * depth, kI, f_old, hit.normal, vt, dt, a.friction_force);
@@ -512,15 +512,12 @@ void DieContact::account(const Model& md, State& st, const std::vector<double>& 
     material_value(md, v_old, std::size_t(a.slave), before);
     material_value(md, st.v, std::size_t(a.slave), after);
     double friction = 0;  // the heat friction and the penalty's dashpot made this step (J)
-    const double fn = std::sqrt(a.normal_force[0] * a.normal_force[0] + a.normal_force[1] * a.normal_force[1] +
-                                a.normal_force[2] * a.normal_force[2]);
-    const double dashpot = fn > 0 ? a.dashpot / fn : 0.0;  // its share of the normal force
     for (int i = 0; i < 3; ++i) {
       const double vbar = 0.5 * (before[i] + after[i]), die_v = die ? rate * direction[i] : 0.0;
       const double f = a.normal_force[i] + a.friction_force[i];
       tot.contact_work += dt_avg * f * vbar;
       tot.press_work += dt_avg * f * die_v;
-      friction -= dt_avg * (a.friction_force[i] + dashpot * a.normal_force[i]) * (vbar - die_v);
+      friction -= dt_avg * (a.friction_force[i] + a.dashpot * a.normal_force[i]) * (vbar - die_v);
     }
     friction -= a.stick_stored;  // what the elastic stick stores is not dissipated
     tot.friction_work += friction;

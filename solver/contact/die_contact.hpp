@@ -134,7 +134,7 @@ class DieContact {
     double normal_force[3], friction_force[3];
     std::int32_t triangle;         // of the die's surface (-1: a plane)
     double stick_stored;           // the energy this step put into its elastic stick (J; what its friction does not dissipate)
-    double dashpot;                // the dashpot's part of the normal force, along it (N; contact_laws.hpp)
+    double dashpot;                // the dashpot's share of the normal force (contact_laws.hpp; 0 without)
   };
   Row row(const Model& md, std::size_t s) const;
   DieHit die_hit(std::size_t k, const double x[3], double t) const;  // x's closest point on die k at time t

@@ -25,11 +25,11 @@ TEST(ContactLaws, PenaltyIsKTimesDepthAlongTheNormal) {
   EXPECT_DOUBLE_EQ(rk::penalty_stiffness(0.5, 2e-3, 1e-7, 2e-7), 2e-3 / 4e-14);
   const double n[3] = {0.6, 0.0, -0.8}, depth = 3e-6;
   double f[3];
-  rk::penalty_force(k, depth, n, f);
+  EXPECT_DOUBLE_EQ(rk::penalty_force(k, depth, 0.0, -1.0, n, f), k * depth);  // no dashpot: the spring alone
   for (int i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(f[i], k * depth * n[i]);
   // the work of f along -n from 0 to d (linear in the depth: the trapezoid rule is exact) is k d^2 / 2
   double f0[3], work = 0;
-  rk::penalty_force(k, 0.0, n, f0);
+  rk::penalty_force(k, 0.0, 0.0, 0.0, n, f0);
   for (int i = 0; i < 3; ++i) work += 0.5 * (f0[i] + f[i]) * depth * n[i];
   EXPECT_NEAR(work, 0.5 * k * depth * depth, 1e-12 * k * depth * depth);
 }
