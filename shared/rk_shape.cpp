@@ -31,7 +31,9 @@ void basis(const double xi[3], Eigen::Matrix<double, NB, 1>& H, Eigen::Matrix<do
   }
 }
 
-template <int NB>
+// kGradient: grad N as well (dN); without it the moment matrix's derivatives are not formed, and N is
+// bit for bit the same
+template <int NB, bool kGradient>
 RkResult shape(const double x[3], std::span<const std::int32_t> nb, const RkParticles& p, Kernel kernel,
                double* N, double* dN) {
   using Vec = Eigen::Matrix<double, NB, 1>;
@@ -57,11 +59,12 @@ RkResult shape(const double x[3], std::span<const std::int32_t> nb, const RkPart
     basis<NB>(xi, H, dH);
     const double w = phi * p.volume[I];
     M.noalias() += w * H * H.transpose();
-    for (int k = 0; k < 3; ++k) {
-      const double dw = (r > 0 ? dphi * d[k] / (r * a) : 0.0) * p.volume[I];
-      const Vec dHk = dH.col(k) * inv;
-      dM[k].noalias() += w * (dHk * H.transpose() + H * dHk.transpose()) + dw * H * H.transpose();
-    }
+    if constexpr (kGradient)
+      for (int k = 0; k < 3; ++k) {
+        const double dw = (r > 0 ? dphi * d[k] / (r * a) : 0.0) * p.volume[I];
+        const Vec dHk = dH.col(k) * inv;
+        dM[k].noalias() += w * (dHk * H.transpose() + H * dHk.transpose()) + dw * H * H.transpose();
+      }
   }
   Eigen::LDLT<Mat> ldlt(M);
   RkResult result;
@@ -76,7 +79,8 @@ RkResult shape(const double x[3], std::span<const std::int32_t> nb, const RkPart
   e0(0) = 1;
   const Vec b = ldlt.solve(e0);  // M b = H(0)
   Vec db[3];
-  for (int k = 0; k < 3; ++k) db[k] = -ldlt.solve(dM[k] * b);  // b,k = -M^{-1} M,k b
+  if constexpr (kGradient)
+    for (int k = 0; k < 3; ++k) db[k] = -ldlt.solve(dM[k] * b);  // b,k = -M^{-1} M,k b
 
   for (std::size_t j = 0; j < nb.size(); ++j) {
     const auto I = nb[j];
@@ -90,10 +94,11 @@ RkResult shape(const double x[3], std::span<const std::int32_t> nb, const RkPart
     const double V = p.volume[I];
     const double bH = b.dot(H);
     N[j] = bH * phi * V;
-    for (int k = 0; k < 3; ++k) {
-      const double dphik = r > 0 ? dphi * d[k] / (r * a) : 0.0;
-      dN[3 * j + k] = (db[k].dot(H) * phi + b.dot(dH.col(k)) * inv * phi + bH * dphik) * V;
-    }
+    if constexpr (kGradient)
+      for (int k = 0; k < 3; ++k) {
+        const double dphik = r > 0 ? dphi * d[k] / (r * a) : 0.0;
+        dN[3 * j + k] = (db[k].dot(H) * phi + b.dot(dH.col(k)) * inv * phi + bH * dphik) * V;
+      }
   }
   return result;
 }
@@ -102,8 +107,11 @@ RkResult shape(const double x[3], std::span<const std::int32_t> nb, const RkPart
 
 RkResult rk_shape(const double x[3], std::span<const std::int32_t> neighbours, const RkParticles& p,
                   Kernel kernel, Basis basis_kind, double* N, double* dN) {
-  return basis_kind == Basis::quadratic ? shape<10>(x, neighbours, p, kernel, N, dN)
-                                        : shape<4>(x, neighbours, p, kernel, N, dN);
+  if (!dN)
+    return basis_kind == Basis::quadratic ? shape<10, false>(x, neighbours, p, kernel, N, dN)
+                                          : shape<4, false>(x, neighbours, p, kernel, N, dN);
+  return basis_kind == Basis::quadratic ? shape<10, true>(x, neighbours, p, kernel, N, dN)
+                                        : shape<4, true>(x, neighbours, p, kernel, N, dN);
 }
 
 double neighbour_spread(const double x[3], std::span<const std::int32_t> neighbours, const RkParticles& p,

@@ -27,7 +27,8 @@ struct RkResult {
 };
 
 // Evaluates N_I and grad N_I at x for the particles in `neighbours` (phi_a(x - X_I) > 0 expected).
-// N has one entry per neighbour, dN three (d/dX, d/dY, d/dZ) per neighbour.
+// N has one entry per neighbour, dN three (d/dX, d/dY, d/dZ) per neighbour; dN null: N alone (the
+// same N, without the gradients' work).
 RkResult rk_shape(const double x[3], std::span<const std::int32_t> neighbours, const RkParticles& p,
                   Kernel kernel, Basis basis, double* N, double* dN);
 

@@ -101,10 +101,10 @@ void build_smoothed_gradients(Model& md, const Subdomain& sub, const LocalShapes
   md.N.assign(md.nbr.size(), 0.0);
   md.dN.assign(3 * md.nbr.size(), 0.0);
   std::vector<std::int32_t> cols;
-  std::vector<double> N, dN, terms;
+  std::vector<double> N, terms;
   auto evaluate = [&](const double* x, const char* where) {
-    cols.clear(), N.clear(), dN.clear();
-    require_regular(md, shapes.append(x, 0, cols, N, dN), x, cols.size(), where);
+    cols.clear(), N.clear();
+    require_regular(md, shapes.append(x, 0, cols, N), x, cols.size(), where);
   };
   for (std::size_t g = 0; g < md.m; ++g) {
     evaluate(&md.point_X[3 * g], "integration point");
@@ -148,12 +148,11 @@ std::vector<double> shortest_edges(const Model& md, const std::vector<double>& x
 
 // The owned particles' rows N_J(X_I): rkprep made the whole support of an owned particle local.
 void build_material_rows(Model& md, const LocalShapes& shapes) {
-  std::vector<double> dN;
   md.material_offsets.assign(1, 0);
   md.material_cols.clear(), md.material_N.clear();
   for (std::size_t I = 0; I < md.n; ++I) {
     const std::size_t k0 = md.material_cols.size();
-    if (md.owned[I] && !shapes.append(&md.Xr[3 * I], md.body[I], md.material_cols, md.material_N, dN).regular) {
+    if (md.owned[I] && !shapes.append(&md.Xr[3 * I], md.body[I], md.material_cols, md.material_N).regular) {
       md.material_cols.resize(k0), md.material_N.resize(k0);  // a particle left alone: its coefficient
       md.material_cols.push_back(std::int32_t(I)), md.material_N.push_back(1.0);
     }

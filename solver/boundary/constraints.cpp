@@ -114,7 +114,6 @@ void build_constraints(Model& md, const Subdomain& sub, const Scene& scene) {
 
   const LocalShapes shapes(md.Xr, sub.volume, md.spacing, md.body, scene);
   std::vector<std::size_t> faces;
-  std::vector<double> dN;
   for (std::size_t I = 0; I < md.n; ++I) {
     const std::vector<Candidate> dirs = orthonormalize(md, I, candidates(md, I, scene, faces), scene, faces);
     for (const auto& c : dirs) {
@@ -133,7 +132,7 @@ void build_constraints(Model& md, const Subdomain& sub, const Scene& scene) {
     // method needs it only to measure its error (and to show u^h), so it does without where the
     // moment matrix is singular (a quadratic basis at a corner); the exact one cannot.
     const std::size_t k0 = md.ebc_cols.size();
-    if (!shapes.append(&md.Xr[3 * I], md.body[I], md.ebc_cols, md.ebc_N, dN).regular) {
+    if (!shapes.append(&md.Xr[3 * I], md.body[I], md.ebc_cols, md.ebc_N).regular) {
       if (scene.discretization.ebc_method == "transformation")
         throw Error("the RK moment matrix is singular at the constrained " + where(md, I) +
                     "; increase discretization.dilation or use discretization.ebc_method: nodal");

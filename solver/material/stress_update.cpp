@@ -17,6 +17,17 @@ void lanes_of_F(const State& st, std::size_t g, int n, Mat& F) {
     for (int i = 0; i < 9; ++i) F.v[i][l] = l < n ? st.F[9 * (g + l) + i] : (i % 4 == 0);
 }
 
+// |F^T F - I|^2 across the lanes.
+Lane green_strain2(const Mat& F) {
+  Lane e2{};
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      const Lane c = F.v[a] * F.v[b] + F.v[3 + a] * F.v[3 + b] + F.v[6 + a] * F.v[6 + b] - (a == b ? 1.0 : 0.0);
+      e2 += c * c;
+    }
+  return e2;
+}
+
 // The points g .. g+n of one cell, kLanes at a time (the rest of the lanes at rest), F theirs across
 // the lanes; with a thermal strain their stress-free stretches into `stretch`.
 void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n, const Mat& F, J2Batch& b,
@@ -160,6 +171,8 @@ StressHealth update_points(const Model& md, State& st, const PressureBound& boun
       Mat& F = F_batch[k];
       J2Batch& b = batch[k];
       lanes_of_F(st, g, n, F);
+      const Lane e2 = green_strain2(F);  // (the rest of the lanes the identity: 0)
+      for (int l = 0; l < n; ++l) health.green_strain2 = std::max(health.green_strain2, e2[l]);
       Lane stretch;
       load(md, st, c, g, n, F, b, stretch);
       j2_update(law, b);

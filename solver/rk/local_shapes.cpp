@@ -37,15 +37,13 @@ void LocalShapes::near_group(const double* x, std::size_t count, int body, std::
   if (bodies_) std::erase_if(candidates, [&](std::int32_t J) { return body_[std::size_t(J)] != body; });
 }
 
-RkResult LocalShapes::append(const double x[3], int body, std::vector<std::int32_t>& cols, std::vector<double>& N,
-                             std::vector<double>& dN) const {
+RkResult LocalShapes::append(const double x[3], int body, std::vector<std::int32_t>& cols, std::vector<double>& N) const {
   found_.clear();
   covering(x, body, found_);
   const std::size_t k0 = cols.size();
   cols.insert(cols.end(), found_.begin(), found_.end());
   N.resize(cols.size());
-  dN.resize(3 * cols.size());
-  return rk_shape(x, found_, particles_, kernel_, basis_, &N[k0], &dN[3 * k0]);
+  return rk_shape(x, found_, particles_, kernel_, basis_, &N[k0], nullptr);
 }
 
 }  // namespace rk

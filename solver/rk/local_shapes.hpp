@@ -18,10 +18,9 @@ class LocalShapes {
               const std::vector<std::uint8_t>& body, const Scene& scene);
 
   // Appends the particles of `body` whose supports cover x (ascending local index) to `cols`, and
-  // their N and grad N (3 per column) to `N` and `dN`: a body's shape functions never reach into
+  // their N to `N` (the gradients are not formed): a body's shape functions never reach into
   // another. The caller reports a singular moment matrix.
-  RkResult append(const double x[3], int body, std::vector<std::int32_t>& cols, std::vector<double>& N,
-                  std::vector<double>& dN) const;
+  RkResult append(const double x[3], int body, std::vector<std::int32_t>& cols, std::vector<double>& N) const;
 
   // Appends the particles of `body` whose supports cover x (the columns append would give, unsorted across calls).
   void covering(const double x[3], int body, std::vector<std::int32_t>& cols) const;

@@ -290,12 +290,12 @@ void material_at_particles(const Model& md, const State& st, const Scene& scene,
                            std::vector<double>& moved, std::vector<double>& velocity) {
   const LocalShapes shapes(md.Xr, md.volume, md.spacing, md.body, scene);
   std::vector<std::int32_t> cols;
-  std::vector<double> N, dN;
+  std::vector<double> N;
   for (std::size_t I = 0; I < md.n; ++I) {
     if (!md.owned[I]) continue;
-    cols.clear(), N.clear(), dN.clear();
+    cols.clear(), N.clear();
     double x[3] = {md.Xr[3 * I], md.Xr[3 * I + 1], md.Xr[3 * I + 2]};
-    if (shapes.append(&md.Xr[3 * I], md.body[I], cols, N, dN).regular) {
+    if (shapes.append(&md.Xr[3 * I], md.body[I], cols, N).regular) {
       for (int i = 0; i < 3; ++i) velocity[3 * I + i] = 0;
       for (std::size_t k = 0; k < cols.size(); ++k)
         for (int i = 0; i < 3; ++i) {
@@ -311,21 +311,6 @@ void material_at_particles(const Model& md, const State& st, const Scene& scene,
 }
 
 }  // namespace
-
-double largest_strain_since_update(const Model& md, const State& st) {
-  double worst = 0;
-  for (std::size_t g = 0; g < md.m; ++g) {
-    const double* F = &st.F[9 * g];
-    double e2 = 0;  // |F^T F - I|^2
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) {
-        const double c = F[a] * F[b] + F[3 + a] * F[3 + b] + F[6 + a] * F[6 + b] - (a == b ? 1.0 : 0.0);
-        e2 += c * c;
-      }
-    worst = std::max(worst, e2);
-  }
-  return 0.5 * std::sqrt(worst);
-}
 
 void update_reference(Model& md, State& st, const Scene& scene, const Comm& comm, const Projection& project) {
   compute_deformation_gradient(md, st);

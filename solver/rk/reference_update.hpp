@@ -25,9 +25,6 @@
 
 namespace rk {
 
-// Largest norm of the Green strain E = (F^T F - I) / 2 since the last update over this rank's points.
-double largest_strain_since_update(const Model& md, const State& st);
-
 // Puts owned particle I's new reference position x (3) onto its essential-BC faces.
 using Projection = std::function<void(std::size_t I, double* x)>;
 

@@ -31,10 +31,10 @@ inline AboveCount count_above(const rk::Model& md, const rk::Scene& scene, const
   const rk::LocalShapes shapes(md.X, md.volume, md.spacing, md.body, scene);
   AboveCount c;
   std::vector<std::int32_t> cols;
-  std::vector<double> N, dN;
+  std::vector<double> N;
   for (std::size_t I = 0; I < md.n; ++I) {
-    cols.clear(), N.clear(), dN.clear();
-    c.regular &= shapes.append(&md.X[3 * I], 0, cols, N, dN).regular;
+    cols.clear(), N.clear();
+    c.regular &= shapes.append(&md.X[3 * I], 0, cols, N).regular;
     double uz = 0;
     for (std::size_t k = 0; k < cols.size(); ++k) uz += N[k] * st.u[3 * std::size_t(cols[k]) + 2];
     c.material += md.X[3 * I + 2] + uz > top;

@@ -52,6 +52,12 @@ TEST_P(Reproducing, PolynomialsAndGradientsToRoundOff) {
     std::vector<double> N(nb.size()), dN(3 * nb.size());
     const auto r = rk::rk_shape(x, nb, parts, rk::Kernel::cubic_bspline, p.basis, N.data(), dN.data());
     ASSERT_TRUE(r.regular) << "at " << x[0] << "," << x[1] << "," << x[2];
+    // N alone (no dN: the material rows, the constraints' rows) is bit for bit the same N
+    std::vector<double> N_alone(nb.size(), -1.0);
+    const auto r_alone = rk::rk_shape(x, nb, parts, rk::Kernel::cubic_bspline, p.basis, N_alone.data(), nullptr);
+    EXPECT_TRUE(r_alone.regular);
+    EXPECT_EQ(r_alone.rcond, r.rcond);
+    for (std::size_t k = 0; k < nb.size(); ++k) EXPECT_EQ(N_alone[k], N[k]) << "neighbour " << k;
     double sum = 0, first[3] = {0, 0, 0}, grad[3] = {0, 0, 0}, second[3][3] = {}, quad[6] = {};
     for (std::size_t k = 0; k < nb.size(); ++k) {
       const double* X = &c.X[3 * nb[k]];
