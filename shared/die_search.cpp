@@ -9,17 +9,6 @@ namespace {
 
 inline double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-// The squared distance from x to the box lo[3], hi[3]: a lower bound on its triangle's, cheap to reject with.
-template <class Real>
-inline double box_distance2(const Real* box, const double x[3]) {
-  double box2 = 0;
-  for (int d = 0; d < 3; ++d) {
-    const double out = std::max({double(box[d]) - x[d], x[d] - double(box[3 + d]), 0.0});
-    box2 += out * out;
-  }
-  return box2;
-}
-
 // x as a float no larger (below) or no smaller (above): a float box that holds the double one
 float float_below(double x) {
   const float f = float(x);
@@ -167,18 +156,33 @@ double DieSearch::distance2(std::int32_t t, const double x[3], double c[3]) cons
   return (x[0] - c[0]) * (x[0] - c[0]) + (x[1] - c[1]) * (x[1] - c[1]) + (x[2] - c[2]) * (x[2] - c[2]);
 }
 
+// The hint's distance bounds the nearest's: a triangle whose box is farther (by more than the ties'
+// tolerance) would at most have been a best that a closer one then replaced, which changes nothing.
+double DieSearch::hint_bound(const double x[3], std::int32_t hint) const {
+  if (hint < 0) return std::numeric_limits<double>::infinity();
+  double c[3];
+  return distance2(hint, x, c) * (1 + 1e-9) + 1e-17;
+}
+
 DieHit DieSearch::nearest_among(const double x[3], const std::int32_t* triangles, const float* boxes, int count,
                                 std::int32_t hint) const {
+  return nearest_within(x, triangles, boxes, count, hint_bound(x, hint));
+}
+
+DieHit DieSearch::nearest_among(const double x[3], const std::int32_t* triangles, const float* boxes, int count,
+                                std::int32_t hint, const std::int32_t* near, const float* near_boxes, int near_count,
+                                double far2) const {
+  const double bound = hint_bound(x, hint);
+  // (the others' boxes lie at least sqrt(far2) from x: each box2 > bound, the loop's first rejection)
+  return far2 > bound ? nearest_within(x, near, near_boxes, near_count, bound)
+                      : nearest_within(x, triangles, boxes, count, bound);
+}
+
+DieHit DieSearch::nearest_within(const double x[3], const std::int32_t* triangles, const float* boxes, int count,
+                                 double bound) const {
   DieHit hit;
   double best = std::numeric_limits<double>::infinity(), best_point[3] = {0, 0, 0};
   const double reach = margin_ * margin_;  // nothing beyond the margin counts
-  // The hint's distance bounds the nearest's: a triangle whose box is farther (by more than the ties'
-  // tolerance) would at most have been a best that a closer one then replaced, which changes nothing.
-  double bound = std::numeric_limits<double>::infinity();
-  if (hint >= 0) {
-    double c[3];
-    bound = distance2(hint, x, c) * (1 + 1e-9) + 1e-17;
-  }
   double pseudo[3] = {0, 0, 0};
   // Squared distances within 1e-12 relative (1e-18 m^2 absolute) are equal to round-off: one point.
   for (int k = 0; k < count; ++k) {

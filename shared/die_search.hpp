@@ -5,6 +5,7 @@
 // Used by rkprep (a workpiece must not start inside a die) and rksolve (the contact of the material
 // points, particles and integration points, with the die's triangles).
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +22,17 @@ struct DieHit {
   double normal[3] = {0, 0, 0};
   std::int32_t triangle = -1;    // the (first) triangle holding the closest point
 };
+
+// The squared distance from x to the box lo[3], hi[3]: a lower bound on its triangle's, cheap to reject with.
+template <class Real>
+inline double box_distance2(const Real* box, const double x[3]) {
+  double box2 = 0;
+  for (int d = 0; d < 3; ++d) {
+    const double out = std::max({double(box[d]) - x[d], x[d] - double(box[3 + d]), 0.0});
+    box2 += out * out;
+  }
+  return box2;
+}
 
 // Closest point to p on the triangle (a, b, c) (Ericson, Real-Time Collision Detection, 5.1.5).
 void closest_point_on_triangle(const double p[3], const double a[3], const double b[3], const double c[3],
@@ -43,6 +55,12 @@ class DieSearch {
   // hit, or -1): its distance rejects the farther triangles before their closest points are sought.
   DieHit nearest_among(const double x[3], const std::int32_t* triangles, const float* boxes, int count,
                        std::int32_t hint = -1) const;
+  // The same answer read from a part of them where it suffices: `near` (near_count, ascending, with
+  // their boxes) holds every one of the triangles whose box may lie within sqrt(far2) of x; where the
+  // hint is nearer than that, each of the others would be rejected by its box, so only `near` is read.
+  DieHit nearest_among(const double x[3], const std::int32_t* triangles, const float* boxes, int count,
+                       std::int32_t hint, const std::int32_t* near, const float* near_boxes, int near_count,
+                       double far2) const;
   DieHit nearest(const double x[3], std::int32_t hint) const;  // nearest(x), with a hint
   std::size_t triangles() const { return normal_.size() / 3; }
   double margin() const { return margin_; }  // a point nearest() does not find is farther than this
@@ -59,6 +77,8 @@ class DieSearch {
   std::int64_t bin(const double x[3], int d) const;
   double distance2(std::int32_t t, const double x[3], double c[3]) const;  // to triangle t; c its closest point
   std::int64_t bin_of(const double x[3]) const;  // -1: x is beyond every triangle's margin and skin
+  double hint_bound(const double x[3], std::int32_t hint) const;  // a bound on the nearest's squared distance
+  DieHit nearest_within(const double x[3], const std::int32_t* triangles, const float* boxes, int count, double bound) const;
 };
 
 }  // namespace rk

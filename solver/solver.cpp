@@ -531,7 +531,7 @@ void Simulation::rebind() {
   const std::vector<DieTotals> totals = dies_->totals();
   const std::vector<std::int64_t> touched = dies_->touched();  // the die fill stays
   const std::vector<double> sticks = dies_->stick_rows();  // and the friction's sticks
-  dies_ = std::make_unique<DieContact>(md_, scene_, md_.dies);
+  dies_ = std::make_unique<DieContact>(md_, scene_, md_.dies, dies_.get());
   dies_->totals() = totals;
   dies_->touched() = touched;
   dies_->set_stick_rows(sticks, "the reference update");

@@ -8,7 +8,7 @@ namespace rk {
 DieCandidates::DieCandidates(std::size_t slaves, std::size_t dies)
     : slaves_(slaves), slot_(slaves * dies, -1), triangles_(kMost), boxes_(6 * kMost) {}
 
-// Into the scratch, then into the list's room (grown where it is short).
+// Into the scratch, then into the list's room (grown where it is short): the list, then its near part.
 void DieCandidates::gather(const DieSearch& search, const double y[3], List& list) {
   for (int i = 0; i < 3; ++i) list.origin[i] = y[i];
   double skin = search.skin();
@@ -16,16 +16,27 @@ void DieCandidates::gather(const DieSearch& search, const double y[3], List& lis
   for (int tries = 0; tries < 3 && count < 0; ++tries, skin = count < 0 ? skin / 4 : skin)
     count = search.candidates(y, skin, triangles_.data(), boxes_.data(), kMost);
   list.skin = float(skin * (1 - 1e-6));  // (less a millionth: the gathering's round-off)
+  list.near_reach = float(kNear * skin);
   list.count = count;
-  if (count > list.capacity) {
-    list.capacity = std::max(count, 2 * list.capacity);
+  const double reach2 = double(list.near_reach) * double(list.near_reach);
+  int near = 0;
+  for (int k = 0; k < count; ++k) near += box_distance2(&boxes_[6 * std::size_t(k)], y) <= reach2;
+  list.near_count = near;
+  if (count + near > list.capacity) {
+    list.capacity = std::max(count + near, 2 * list.capacity);
     list.offset = triangles_.size();
     triangles_.resize(triangles_.size() + std::size_t(list.capacity));
     boxes_.resize(boxes_.size() + 6 * std::size_t(list.capacity));
   }
-  if (count > 0) {
-    std::copy(triangles_.begin(), triangles_.begin() + count, triangles_.begin() + std::ptrdiff_t(list.offset));
-    std::copy(boxes_.begin(), boxes_.begin() + 6 * count, boxes_.begin() + std::ptrdiff_t(6 * list.offset));
+  for (int k = 0, at = count; k < count; ++k) {
+    const std::size_t to = list.offset + std::size_t(k);
+    triangles_[to] = triangles_[std::size_t(k)];
+    std::copy_n(&boxes_[6 * std::size_t(k)], 6, &boxes_[6 * to]);
+    if (box_distance2(&boxes_[6 * std::size_t(k)], y) <= reach2) {  // (ascending, as the list)
+      const std::size_t n = list.offset + std::size_t(at++);
+      triangles_[n] = triangles_[std::size_t(k)];
+      std::copy_n(&boxes_[6 * std::size_t(k)], 6, &boxes_[6 * n]);
+    }
   }
 }
 
@@ -35,16 +46,21 @@ DieHit DieCandidates::nearest(const DieSearch& search, std::size_t die, std::siz
   if (slot < 0) {  // a list only for a slave that comes near the die (a far one is skipped by its clearance)
     if (search.candidates(y, search.skin(), triangles_.data(), boxes_.data(), kMost) == 0) return DieHit{};
     slot = std::int32_t(lists_.size());
-    lists_.push_back(List{{0, 0, 0}, 0, 0, -1, 0, 0});
+    lists_.push_back(List{{0, 0, 0}, 0, 0, 0, 0, -1, 0, 0});
     gather(search, y, lists_.back());
   }
   List& list = lists_[std::size_t(slot)];
   double d2 = 0;  // within the skin of the origin the list holds every triangle within the margin of y
   for (int i = 0; i < 3; ++i) d2 += (y[i] - list.origin[i]) * (y[i] - list.origin[i]);
-  if (!(d2 <= double(list.skin) * double(list.skin))) gather(search, y, list);
+  if (!(d2 <= double(list.skin) * double(list.skin))) gather(search, y, list), d2 = 0;
+  // every triangle past the near part lies, by its box, farther than this from y: more than the reach
+  // less how far y moved (1-Lipschitz), less a billionth each for the round-off of both
+  const double beyond = (double(list.near_reach) - std::sqrt(d2) * (1 + 1e-9)) * (1 - 1e-9);
+  const std::size_t near = list.offset + std::size_t(std::max(list.count, 0));
   const DieHit hit = list.count < 0 ? search.nearest(y, list.last)
                                     : search.nearest_among(y, &triangles_[list.offset], &boxes_[6 * list.offset],
-                                                           list.count, list.last);
+                                                           list.count, list.last, &triangles_[near], &boxes_[6 * near],
+                                                           list.near_count, beyond > 0 ? beyond * beyond : 0.0);
   list.last = hit.triangle;
   return hit;
 }

@@ -12,8 +12,8 @@
 
 namespace rk {
 
-DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<DieSurface>& surfaces)
-    : dies_(scene.dies), surfaces_(surfaces), penalty_scale_(scene.penalty_scale_at_cfl()), damping_(scene.contact.damping) {
+DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<DieSurface>& surfaces, DieContact* previous)
+    : dies_(scene.dies), penalty_scale_(scene.penalty_scale_at_cfl()), damping_(scene.contact.damping) {
   for (const RigidWall& w : scene.rigid_walls) {  // its normal points into the part's side
     Plane p{{w.point[0], w.point[1], w.point[2]}, {w.normal[0], w.normal[1], w.normal[2]}, dies_.size() + planes_.size()};
     planes_.push_back(p);
@@ -40,8 +40,14 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
     }
   // Penetrations stay far below half a spacing (the penalty is stiff); deeper ones would be missed.
   margin_ = 0.5 * hmax;
-  // a slave's candidate triangles are gathered again once it has moved a quarter of the margin (die_candidates.hpp)
-  for (const auto& s : surfaces_) search_.push_back(std::make_unique<DieSearch>(s, margin_, 0.25 * margin_));
+  // a slave's candidate triangles are gathered again once it has moved a quarter of the margin (die_candidates.hpp);
+  // the searches hold their surfaces by reference, so both move over together (a vector's move keeps its elements)
+  if (previous && previous->margin_ == margin_ && previous->search_.size() == surfaces.size()) {
+    surfaces_ = std::move(previous->surfaces_), search_ = std::move(previous->search_);
+  } else {
+    surfaces_ = surfaces;
+    for (const auto& s : surfaces_) search_.push_back(std::make_unique<DieSearch>(s, margin_, 0.25 * margin_));
+  }
 
   const std::size_t slaves = particles_.size() + md.m;
   candidates_ = DieCandidates(slaves, dies_.size());

@@ -46,7 +46,9 @@ struct DieTotals {       // per die, per rigid wall, and one for the symmetry pl
 
 class DieContact {
  public:
-  DieContact(const Model& md, const Scene& scene, const std::vector<DieSurface>& surfaces);
+  // previous: the contact this one replaces (a reference update): its dies' searches are taken over where
+  // they fit (the same margin; the dies' triangles never change), instead of built again
+  DieContact(const Model& md, const Scene& scene, const std::vector<DieSurface>& surfaces, DieContact* previous = nullptr);
   bool empty() const { return dies_.empty() && planes_.empty(); }  // nothing to meet
 
   // Contact forces at time t from the positions and the velocities v^{n-1/2}; dt is the previous

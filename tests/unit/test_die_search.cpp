@@ -126,7 +126,9 @@ rk::DieSurface fine_cube(int n) {
 
 // A slave's candidate triangles answer as its bin does, bit for bit, whether the slave stays within the
 // skin (the list kept) or leaves it (gathered again), inside the die or out, at faces, edges and
-// corners, and where a fine mesh puts more triangles near it than a list holds (the skin shrinks).
+// corners, where a slave near the surface reads only its list's near part, and where a fine mesh puts
+// more triangles near it than a list holds (the skin shrinks). Mutations caught (2026-12-05): the near
+// part gathered half as far; the slave's move since the gathering not taken off the near part's reach.
 TEST(DieCandidates, TheSameHitAsTheBinsAlongEveryPath) {
   for (int n : {4, 20}) {
     const rk::DieSurface cube = fine_cube(n);
