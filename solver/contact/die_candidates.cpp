@@ -9,12 +9,12 @@ DieCandidates::DieCandidates(std::size_t slaves, std::size_t dies)
     : slaves_(slaves), slot_(slaves * dies, -1), triangles_(kMost), boxes_(6 * kMost) {}
 
 // Into the scratch, then into the list's room (grown where it is short): the list, then its near part.
-void DieCandidates::gather(const DieSearch& search, const double y[3], List& list) {
+// count: the scratch's, gathered at the search's skin, where the caller has it (-2: not yet)
+void DieCandidates::gather(const DieSearch& search, const double y[3], List& list, int count) {
   for (int i = 0; i < 3; ++i) list.origin[i] = y[i];
   double skin = search.skin();
-  int count = -1;
   for (int tries = 0; tries < 3 && count < 0; ++tries, skin = count < 0 ? skin / 4 : skin)
-    count = search.candidates(y, skin, triangles_.data(), boxes_.data(), kMost);
+    if (tries > 0 || count < -1) count = search.candidates(y, skin, triangles_.data(), boxes_.data(), kMost);
   list.skin = float(skin * (1 - 1e-6));  // (less a millionth: the gathering's round-off)
   list.near_reach = float(kNear * skin);
   list.count = count;
@@ -44,10 +44,11 @@ DieHit DieCandidates::nearest(const DieSearch& search, std::size_t die, std::siz
   if (!(search.skin() > 0)) return search.nearest(y);
   std::int32_t& slot = slot_[die * slaves_ + slave];
   if (slot < 0) {  // a list only for a slave that comes near the die (a far one is skipped by its clearance)
-    if (search.candidates(y, search.skin(), triangles_.data(), boxes_.data(), kMost) == 0) return DieHit{};
+    const int count = search.candidates(y, search.skin(), triangles_.data(), boxes_.data(), kMost);
+    if (count == 0) return DieHit{};
     slot = std::int32_t(lists_.size());
     lists_.push_back(List{{0, 0, 0}, 0, 0, 0, 0, -1, 0, 0});
-    gather(search, y, lists_.back());
+    gather(search, y, lists_.back(), count);
   }
   List& list = lists_[std::size_t(slot)];
   double d2 = 0;  // within the skin of the origin the list holds every triangle within the margin of y

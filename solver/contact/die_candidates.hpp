@@ -20,6 +20,7 @@ class DieCandidates {
   DieCandidates(std::size_t slaves, std::size_t dies);
   // die's closest point to y (in the die's frame) for this slave: search.nearest(y)'s answer
   DieHit nearest(const DieSearch& search, std::size_t die, std::size_t slave, const double y[3]);
+  std::size_t slaves() const { return slaves_; }
 
  private:
   // At most this many triangles a list: where more lie within the skin (a die meshed far finer than
@@ -38,7 +39,7 @@ class DieCandidates {
     std::int32_t capacity;   // its room in the pool
     std::size_t offset;      // its first triangle in the pool
   };
-  void gather(const DieSearch& search, const double y[3], List& list);
+  void gather(const DieSearch& search, const double y[3], List& list, int count = -2);
 
   std::size_t slaves_ = 0;
   std::vector<std::int32_t> slot_;  // per die and slave: its list in lists_ (-1: none yet)

@@ -42,15 +42,18 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
   margin_ = 0.5 * hmax;
   // a slave's candidate triangles are gathered again once it has moved a quarter of the margin (die_candidates.hpp);
   // the searches hold their surfaces by reference, so both move over together (a vector's move keeps its elements)
+  const std::size_t slaves = particles_.size() + md.m;
   if (previous && previous->margin_ == margin_ && previous->search_.size() == surfaces.size()) {
     surfaces_ = std::move(previous->surfaces_), search_ = std::move(previous->search_);
+    // and the slaves' candidate lists where the slaves are the same (a rank keeps its points and owned
+    // particles, in the same order): a list holds for any position near its origin, old or new reference
+    if (previous->particle_ids_ == particle_ids_ && previous->mass_.size() == slaves)
+      candidates_ = std::move(previous->candidates_);
   } else {
     surfaces_ = surfaces;
     for (const auto& s : surfaces_) search_.push_back(std::make_unique<DieSearch>(s, margin_, 0.25 * margin_));
   }
-
-  const std::size_t slaves = particles_.size() + md.m;
-  candidates_ = DieCandidates(slaves, dies_.size());
+  if (candidates_.slaves() != slaves) candidates_ = DieCandidates(slaves, dies_.size());
   mass_.resize(slaves), N_sum_.assign(slaves, 0.0), N_max_.assign(slaves, 0.0);
   for (std::size_t s = 0; s < slaves; ++s) {
     const std::size_t g = s - particles_.size();  // (a point's, for s past the particles)

@@ -72,6 +72,7 @@ std::vector<std::int32_t> flag_growth(const Model& md, const Scene& scene, const
   const Kernel kernel = parse_kernel(scene.discretization.kernel);
   std::vector<double> radius(total), reach(total);
   std::vector<std::int32_t> candidates, found, grow;
+  std::vector<std::uint8_t> flagged(total, 0);  // (a poor point's neighbourhood overlaps the next one's)
   for (std::size_t I = 0; I < total; ++I) radius[I] = scene.discretization.dilation * spacing[I], reach[I] = kReach * radius[I];
   const NeighbourGrid grid(Xr.data(), radius.data(), total), near(Xr.data(), reach.data(), total);
   const RkParticles particles{Xr.data(), volume.data(), radius.data()};
@@ -90,12 +91,12 @@ std::vector<std::int32_t> flag_growth(const Model& md, const Scene& scene, const
       if (neighbour_spread(&md.point_X[3 * g], found, particles, kernel) >= kPoor) continue;
       found.clear();
       near.covering(&md.point_X[3 * g], found);
-      grow.insert(grow.end(), found.begin(), found.end());
+      for (auto J : found) flagged[std::size_t(J)] = 1;
     }
   }
-  std::sort(grow.begin(), grow.end());
-  grow.erase(std::unique(grow.begin(), grow.end()), grow.end());
-  return grow;
+  for (std::size_t J = 0; J < total; ++J)
+    if (flagged[J]) grow.push_back(std::int32_t(J));
+  return grow;  // ascending
 }
 
 // Values grouped by destination rank, for Comm::exchange.
