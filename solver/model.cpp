@@ -310,6 +310,7 @@ Model build_model(const Subdomain& sub, const Scene& scene, const std::vector<do
   }
   md.damage_cockcroft_latham = scene.damage.cockcroft_latham, md.damage_brozzo = scene.damage.brozzo;
   md.damage_oyane = scene.damage.oyane, md.oyane_a = scene.damage.oyane_a;
+  md.green_strain = scene.reference_updates.strain > 0;
   // F-bar averages the dilatation over a cell's points: the identity where every cell has one point
   // (Gauss order 1) and meaningless for nodal points; without it the stress update batches points
   // across cells

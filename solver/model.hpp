@@ -123,6 +123,7 @@ struct Model {
   bool damage_cockcroft_latham = false, damage_brozzo = false, damage_oyane = false;  // the criteria the scene asks for
   double oyane_a = 0;                                                                  // Oyane's constant
   bool fbar = true;
+  bool green_strain = false;  // the stress update measures the Green strain (the scene's reference updates ask for it)
 };
 
 // The body of cell c: its nodes' (a cell never spans two bodies).

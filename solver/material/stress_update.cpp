@@ -171,8 +171,10 @@ StressHealth update_points(const Model& md, State& st, const PressureBound& boun
       Mat& F = F_batch[k];
       J2Batch& b = batch[k];
       lanes_of_F(st, g, n, F);
-      const Lane e2 = green_strain2(F);  // (the rest of the lanes the identity: 0)
-      for (int l = 0; l < n; ++l) health.green_strain2 = std::max(health.green_strain2, e2[l]);
+      if (md.green_strain) {
+        const Lane e2 = green_strain2(F);  // (the rest of the lanes the identity: 0)
+        for (int l = 0; l < n; ++l) health.green_strain2 = std::max(health.green_strain2, e2[l]);
+      }
       Lane stretch;
       load(md, st, c, g, n, F, b, stretch);
       j2_update(law, b);

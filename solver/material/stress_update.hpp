@@ -41,8 +41,9 @@ struct StressHealth {
   double pressure_ratio = 0;  // the largest |p| / p_ref (PressureBound) of the rank's points
   double pressure = 0;  // its pressure (Pa, compression positive, the bulk viscosity's q included)
   bool pressure_stop = false;  // not ok because a pressure passed the bound (point, pressure say where)
-  // the largest |F^T F - I|^2 of the points updated (twice the Green strain's norm, squared): the
-  // reference update's measure, taken here while F is at hand instead of in a pass of its own
+  // the largest |F^T F - I|^2 of the points updated (twice the Green strain's norm, squared), where
+  // Model::green_strain asks: the reference update's measure, taken here while F is at hand instead of
+  // in a pass of its own
   double green_strain2 = 0;
 };
 

@@ -28,7 +28,7 @@ struct Cell {
   double J_bar = 0;
   explicit Cell(bool viscous) {
     const std::size_t m = 10;
-    md.m = m, md.cells = 1, md.fbar = true;
+    md.m = m, md.cells = 1, md.fbar = true, md.green_strain = true;
     md.cell_points = {0, std::int32_t(m)};
     double wJ = 0, w = 0;
     for (std::size_t g = 0; g < m; ++g) md.weight.push_back(1e-9 * double(1 + g % 3)), md.dN_max.push_back(1e3 * double(1 + g));
