@@ -5,8 +5,8 @@
 //   dt = CFL * min over cells of h0_c * min_{g in c} sigma_min(F_g) / c_c,
 // h0_c the cell's shortest edge at t = 0 (after a reference update the contact's step takes the
 // shorter of that and its edge on the new reference, Model::cell_h_reference, and h0_c is at most
-// reference_updates.step_growth x 0.9 / CFL times that, at least once: the step grows at most so far past
-// the contact's step at the default CFL),
+// max(1, reference_updates.step_growth x 0.9 / CFL) times that: the step grows at most so far past the
+// contact's step at the default CFL),
 // sigma_min the smallest principal stretch, and
 // c_c^2 = (K + 4G/3) / rho the dilatational wave speed at the current density rho = rho0 / Jbar;
 // with bulk viscosity each point's term shrinks by its factor (material/bulk_viscosity.hpp).

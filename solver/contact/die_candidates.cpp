@@ -19,24 +19,23 @@ void DieCandidates::gather(const DieSearch& search, const double y[3], List& lis
   list.near_reach = float(kNear * skin);
   list.count = count;
   const double reach2 = double(list.near_reach) * double(list.near_reach);
-  int near = 0;
-  for (int k = 0; k < count; ++k) near += box_distance2(&boxes_[6 * std::size_t(k)], y) <= reach2;
-  list.near_count = near;
-  if (count + near > list.capacity) {
-    list.capacity = std::max(count + near, 2 * list.capacity);
+  bool near[kMost];
+  int near_count = 0;
+  for (int k = 0; k < count; ++k) near_count += near[k] = box_distance2(&boxes_[6 * std::size_t(k)], y) <= reach2;
+  list.near_count = near_count;
+  if (count + near_count > list.capacity) {
+    list.capacity = std::max(count + near_count, 2 * list.capacity);
     list.offset = triangles_.size();
     triangles_.resize(triangles_.size() + std::size_t(list.capacity));
     boxes_.resize(boxes_.size() + 6 * std::size_t(list.capacity));
   }
-  for (int k = 0, at = count; k < count; ++k) {
-    const std::size_t to = list.offset + std::size_t(k);
+  auto keep = [&](int k, std::size_t to) {
     triangles_[to] = triangles_[std::size_t(k)];
     std::copy_n(&boxes_[6 * std::size_t(k)], 6, &boxes_[6 * to]);
-    if (box_distance2(&boxes_[6 * std::size_t(k)], y) <= reach2) {  // (ascending, as the list)
-      const std::size_t n = list.offset + std::size_t(at++);
-      triangles_[n] = triangles_[std::size_t(k)];
-      std::copy_n(&boxes_[6 * std::size_t(k)], 6, &boxes_[6 * n]);
-    }
+  };
+  for (int k = 0, at = count; k < count; ++k) {  // (the near part ascending, as the list)
+    keep(k, list.offset + std::size_t(k));
+    if (near[k]) keep(k, list.offset + std::size_t(at++));
   }
 }
 
