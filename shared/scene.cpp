@@ -489,24 +489,35 @@ Material read_material(Section& parent, const std::string& key, const std::files
 }
 
 // Multi-rate steps hold each point's state over its own step; what needs the state of every point at
-// every step, or the length of a point's own step, is not built for them yet: one error naming the key.
-void check_subcycling(const Scene& s) {
-  if (s.time.subcycling == 1) return;
-  auto refuse = [&](const std::string& what) {
-    throw Error(s.file.string() + ": key 'time.subcycling' = " + std::to_string(s.time.subcycling) +
-                " cannot be combined with " + what + " (not built yet; docs/scene.md)");
-  };
+// every step, or the length of a point's own step, is not built for them yet. The reason a scene cannot
+// take them, or "" where it can.
+std::string subcycling_refusal(const Scene& s) {
   if (s.discretization.integration != "gauss" || s.discretization.volumetric != "fbar")
-    refuse("'discretization.integration' other than gauss with 'volumetric' = fbar");
-  if (s.time.stable_step != "cells") refuse("'time.stable_step' = " + s.time.stable_step);
-  if (s.reference_updates.strain > 0) refuse("'reference_updates.strain' > 0");
-  if (!s.bodies.empty() || s.contact.self) refuse("'geometry.bodies' or 'contact.self' (the part's own contact)");
+    return "'discretization.integration' other than gauss with 'volumetric' = fbar";
+  if (s.time.stable_step != "cells") return "'time.stable_step' = " + s.time.stable_step;
+  if (s.reference_updates.strain > 0) return "'reference_updates.strain' > 0";
+  if (!s.bodies.empty() || s.contact.self) return "'geometry.bodies' or 'contact.self' (the part's own contact)";
   auto rate_or_heat = [](const Material& m) {
     return m.thermal() || m.model == MaterialModel::johnson_cook || m.model == MaterialModel::hansel_spittel ||
            m.model == MaterialModel::table;
   };
-  if (rate_or_heat(s.material)) refuse("a rate-dependent material or a temperature ('material')");
-  if (!s.dies.empty() || !s.rigid_walls.empty()) refuse("dies or rigid walls (a particle's first touch)");
+  if (rate_or_heat(s.material)) return "a rate-dependent material or a temperature ('material')";
+  if (!s.dies.empty() || !s.rigid_walls.empty()) return "dies or rigid walls (a particle's first touch)";
+  return "";
+}
+
+// time.subcycling "auto" (0 here, the default) takes the largest ratio, 16, where the scene allows
+// multi-rate steps and 1 where it does not; a ratio asked for where it cannot be is one error naming the key.
+// The resolved deck keeps "auto", so that a case's deck read again with other keys set resolves again.
+void resolve_subcycling(Scene& s, YAML::Node resolved_time) {
+  const std::string why_not = subcycling_refusal(s);
+  if (s.time.subcycling == 0) {
+    s.time.subcycling = why_not.empty() ? 16 : 1;
+    resolved_time["subcycling"] = "auto";
+  } else if (s.time.subcycling > 1 && !why_not.empty()) {
+    throw Error(s.file.string() + ": key 'time.subcycling' = " + std::to_string(s.time.subcycling) +
+                " cannot be combined with " + why_not + " (not built yet; docs/scene.md)");
+  }
 }
 
 Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Override>& overrides, Side side) {
@@ -778,9 +789,13 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     s.time.dwell = t.text("dwell", "auto", {"auto", "off"});
     s.time.output_interval = t.number("output_interval", s.time.end / 10, {0, 1e6, true, false});
     s.time.mass_scaling_dt = t.number("mass_scaling_dt", 0.0, {0, 1});
-    s.time.subcycling = t.integer("subcycling", 1, 1, 16);
+    const YAML::Node ratio = t.get("subcycling", false);
+    if (!ratio || ratio.IsNull() || (ratio.IsScalar() && ratio.Scalar() == "auto"))
+      s.time.subcycling = 0;  // auto, resolved once the whole scene is read
+    else
+      s.time.subcycling = t.integer("subcycling", std::nullopt, 1, 16);
     if (s.time.subcycling & (s.time.subcycling - 1))
-      throw Error(t.where_of("subcycling") + ": must be 1, 2, 4, 8 or 16 (the largest ratio of a particle's step to the smallest)");
+      throw Error(t.where_of("subcycling") + ": must be auto, 1, 2, 4, 8 or 16 (the largest ratio of a particle's step to the smallest)");
     t.done();
     for (const Die& d : s.dies)  // past bottom dead centre a crank press's ram rises off the part
       if (d.motion.cranked() && s.time.end > d.motion.crank.bottom_dead_centre() * (1 + 1e-12)) {
@@ -838,7 +853,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     h.done();
   }
   top.done();
-  check_subcycling(s);
+  resolve_subcycling(s, resolved["time"]);
 
   YAML::Emitter all;
   all << resolved;

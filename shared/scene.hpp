@@ -266,7 +266,8 @@ struct Scene {
     double output_interval = 0;    // s
     double mass_scaling_dt = 0;    // s; > 0: density scaled so that the stable step is at least this
     // multi-rate steps (solver/subcycles.hpp): the largest ratio of a particle's step to the smallest,
-    // a power of two up to 16; 1: every particle takes the smallest step
+    // a power of two up to 16; 1: every particle takes the smallest step. A scene file's "auto" (its
+    // default) reads 16 where the scene allows multi-rate steps and 1 where it does not.
     int subcycling = 1;
     // a stage of a chain without dies, loads or moving faces: "auto" a dwell (the part set down, its
     // temperature alone; solver/stage.hpp), "off" the part's motion goes on (an impact, a flight)

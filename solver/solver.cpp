@@ -313,8 +313,8 @@ void Simulation::time_step() {
   limits_.penalty_dt = std::numeric_limits<double>::infinity();  // (dt itself, before an update)
   if (sync_)
     stable_ = stable_time_step(md_, st_, scene_.time.cfl, true, stable_.cell, frequency_ ? nullptr : &limits_.penalty_dt);
-  if (subcycles_ && sync_)  // each cell's, for the classes (a cycle holds the step of its start)
-    cell_time_steps(md_, st_, scene_.time.cfl, double(1 << subcycles_->max_levels()) * stable_.dt, cell_dt_);
+  if (subcycles_ && sync_)  // whether any cell could take more than the smallest step
+    limits_.cell_dt_ceiling = cell_time_step_ceiling(md_, st_, scene_.time.cfl);
   if (frequency_) stable_.dt *= frequency_->step_ratio(md_, st_, comm_);  // the same on every rank
   const double update_strain = scene_.reference_updates.strain;
   limits_.dt = stable_.dt;
@@ -362,6 +362,9 @@ double Simulation::step_size(bool last) {
   const double horizon = std::min(scene_.time.end, next_output) - st_.t;
   int levels = 0;
   while (levels < subcycles_->max_levels() && !last && dt == limits_.dt && double(2 << levels) * dt <= horizon) ++levels;
+  if (limits_.cell_dt_ceiling < 2 * dt) levels = 0;  // every cell at the smallest step: no classes to count
+  if (levels > 0)  // each cell's own step, as far as its class needs (a cycle holds the step of its start)
+    cell_time_steps(md_, st_, scene_.time.cfl, dt, levels, cell_dt_);
   subcycles_->plan(md_, cell_dt_, dt, levels, st_.step, [&](std::vector<Fixed>& counts) { exchange_->sum(counts); },
                    [&](int k) {
                      double top = k;
@@ -702,7 +705,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   const std::string first_die = scene_.dies.empty() ? "" : scene_.dies[0].name;
   progress_ = std::make_unique<Progress>(!opt.quiet && comm.rank() == 0, comm.size(), comm.wtime(), opt.progress_s, t0_,
                                          scene_.time.end, history_->columns(), first_die, st_);
-  progress_->banner(opt.restart, setup_s_, md_.mass_scaling);
+  progress_->banner(opt.restart, setup_s_, md_.mass_scaling, scene_.time.subcycling);
   if (staged_ && !opt.restart && !opt.quiet && comm.rank() == 0) {
     int kept = 0;
     for (int k : stage_.continues) kept += k >= 0 ? 1 : 0;

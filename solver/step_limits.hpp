@@ -20,15 +20,17 @@ struct StepLimits {
   double pressure_ratio = 0;      // largest |p| / (rho0 c_L v_max + sigma_y)
   bool interrupted = false;       // a rank received SIGINT or SIGTERM
   double reaction_bound = 0;      // the largest contribution to a press-driven die's reaction (its fixed-point scale)
+  double cell_dt_ceiling = 0;     // multi-rate steps: at or above every cell's own stable step (s)
 
   // Collective: the limits of all ranks, in one reduction.
   void reduce(const Comm& comm) {
-    double r[11] = {-dt, force_bound, unhealthy ? 1.0 : 0.0, checkpoint_clock ? 1.0 : 0.0, strain_since_update,
-                    symmetry_depth, pressure_ratio, interrupted ? 1.0 : 0.0, reaction_bound, contact_bound, -penalty_dt};
-    comm.max(r, 11);
+    double r[12] = {-dt, force_bound, unhealthy ? 1.0 : 0.0, checkpoint_clock ? 1.0 : 0.0, strain_since_update,
+                    symmetry_depth, pressure_ratio, interrupted ? 1.0 : 0.0, reaction_bound, contact_bound, -penalty_dt,
+                    cell_dt_ceiling};
+    comm.max(r, 12);
     dt = -r[0], force_bound = r[1], unhealthy = r[2] > 0, checkpoint_clock = r[3] > 0;
     strain_since_update = r[4], symmetry_depth = r[5], pressure_ratio = r[6], interrupted = r[7] > 0;
-    reaction_bound = r[8], contact_bound = r[9], penalty_dt = -r[10];
+    reaction_bound = r[8], contact_bound = r[9], penalty_dt = -r[10], cell_dt_ceiling = r[11];
   }
 };
 

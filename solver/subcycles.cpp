@@ -26,8 +26,10 @@ void sort_by_class(std::span<const std::int32_t> entries, const auto& class_of, 
 
 Subcycles::Subcycles(const Model& md, int max_ratio)
     : max_levels_(std::countr_zero(unsigned(max_ratio))), point_cell_(md.m, -1), particle_class_(md.n, 0),
-      cell_class_(md.cells, 0), touched_(md.n, 0), counts_(kForceStride * md.n, 0), all_cells_(md.cells) {
+      cell_class_(md.cells, 0), touched_(md.n, 0), counts_(kForceStride * md.n, 0), all_cells_(md.cells),
+      boundary_(md.boundary_points), interior_(md.interior_points) {
   for (std::size_t c = 0; c < md.cells; ++c) all_cells_[c] = std::int32_t(c);
+  cells_ = all_cells_;  // (sorted by class at each plan: every cell and point once, in some order)
   for (std::size_t c = 0; c < md.cells; ++c)
     for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) point_cell_[std::size_t(g)] = std::int32_t(c);
   // each cell's particles: the union of its points' rows, each once (the points share most of them)
@@ -47,6 +49,16 @@ Subcycles::Subcycles(const Model& md, int max_ratio)
 void Subcycles::plan(const Model& md, const std::vector<double>& dt_cell, double dt, int levels, std::int64_t step,
                      const SumOverRanks& sum, const LargestOverRanks& largest) {
   start_ = step;
+  if (levels == 0) {  // a cycle of one step (every rank's: levels is agreed): every particle and cell due
+    levels_ = 0;
+    std::fill(particle_class_.begin(), particle_class_.end(), std::int8_t(0));
+    std::fill(cell_class_.begin(), cell_class_.end(), std::int8_t(0));
+    std::fill(touched_.begin(), touched_.end(), std::int8_t(0));
+    cells_end_.assign(std::size_t(kMaxLevels) + 1, cells_.size());
+    boundary_end_.assign(std::size_t(kMaxLevels) + 1, boundary_.size());
+    interior_end_.assign(std::size_t(kMaxLevels) + 1, interior_.size());
+    return;
+  }
   static_assert(kForceStride == kMaxLevels, "a particle's counts: one per class below the largest");
   // each cell counts its limit class at every particle of its points' rows; the least counted is the particle's
   std::fill(counts_.begin(), counts_.end(), 0);

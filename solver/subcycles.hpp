@@ -40,11 +40,13 @@ class Subcycles {
   bool starts(std::int64_t step) const { return start_ < 0 || step - start_ >= (std::int64_t(1) << levels_); }
   int max_levels() const { return max_levels_; }
 
-  // At a cycle's first step: dt_cell each cell's stable step (time_step.hpp, cell_time_steps), dt the
-  // smallest step, 2^levels of them the cycle. The particles that took a contact force in the last
-  // cycle (touched) take the smallest step. The cycle is as long as its largest class needs (2^levels
-  // at most). `sum` adds the other ranks' counts of the shared particles (kForceStride per particle,
-  // OverlapExchange::sum), `largest` the largest over the ranks (collective both).
+  // At a cycle's first step: dt_cell each cell's stable step, as far as its class needs (time_step.hpp,
+  // cell_time_steps), dt the smallest step, 2^levels of them the cycle. The particles that took a
+  // contact force in the last cycle (touched) take the smallest step. The cycle is as long as its
+  // largest class needs (2^levels at most); with levels 0 (every cell at the smallest step) nothing is
+  // counted, dt_cell is not read and nothing collective is called. `sum` adds the other ranks' counts of
+  // the shared particles (kForceStride per particle, OverlapExchange::sum), `largest` the largest over
+  // the ranks (collective both).
   using SumOverRanks = std::function<void(std::vector<Fixed>&)>;
   using LargestOverRanks = std::function<int(int)>;
   void plan(const Model& md, const std::vector<double>& dt_cell, double dt, int levels, std::int64_t step,

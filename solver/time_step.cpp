@@ -84,20 +84,41 @@ StableStep stable_time_step(const Model& md, const State& st, double cfl, bool d
   return {cfl * dt, which};
 }
 
-void cell_time_steps(const Model& md, const State& st, double cfl, double enough, std::vector<double>& dt_cell) {
+void cell_time_steps(const Model& md, const State& st, double cfl, double dt, int levels, std::vector<double>& dt_cell) {
+  const auto class_of = [&](double x) {  // as Subcycles::plan reads it
+    int k = 0;
+    while (k < levels && double(2 << k) * dt <= x) ++k;
+    return k;
+  };
   dt_cell.assign(md.cells, std::numeric_limits<double>::infinity());
   for (std::size_t c = 0; c < md.cells; ++c) {
     const double scale0 = md.cell_h0[c] / wave_speed(md, st, c);
-    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) {
+    int least = levels;  // the class of dt_cell[c] so far
+    for (auto g = md.cell_points[c]; g < md.cell_points[c + 1] && least > 0; ++g) {
       const double* F = &st.F[9 * std::size_t(g)];
       const double scale = st.dt_factor.empty() ? scale0 : scale0 * st.dt_factor[std::size_t(g)];
-      double trC = 0;  // the cheap lower bounds of stable_time_step: past `enough`, no more is needed
+      double trC = 0;  // the cheap lower bounds of stable_time_step: where they hold the class, no more is needed
       for (int k = 0; k < 9; ++k) trC += F[k] * F[k];
       const double bound = cfl * (scale * std::max(2 * std::abs(st.J[g]) / trC, std::sqrt(std::max(gershgorin_floor(F), 0.0))));
       // (CFL times the point's step, rounded as stable_time_step rounds the least)
-      dt_cell[c] = std::min(dt_cell[c], bound >= enough ? bound : cfl * (scale * smallest_stretch(F, st.J[g])));
+      dt_cell[c] = std::min(dt_cell[c], class_of(bound) >= least ? bound : cfl * (scale * smallest_stretch(F, st.J[g])));
+      least = class_of(dt_cell[c]);
     }
   }
+}
+
+double cell_time_step_ceiling(const Model& md, const State& st, double cfl) {
+  double most = 0;
+  for (std::size_t c = 0; c < md.cells; ++c) {
+    const auto g = std::size_t(md.cell_points[c]);
+    if (g == std::size_t(md.cell_points[c + 1])) continue;
+    const double* F = &st.F[9 * g];
+    double least_C = std::numeric_limits<double>::infinity();  // lambda_min(C) <= C_ii (a Rayleigh quotient)
+    for (int i = 0; i < 3; ++i) least_C = std::min(least_C, F[i] * F[i] + F[3 + i] * F[3 + i] + F[6 + i] * F[6 + i]);
+    const double factor = st.dt_factor.empty() ? 1.0 : st.dt_factor[g];
+    most = std::max(most, cfl * (md.cell_h0[c] / wave_speed(md, st, c) * factor * std::sqrt(least_C)));
+  }
+  return most * (1 + 1e-12);  // (past the round-off of the cells' own steps)
 }
 
 }  // namespace rk

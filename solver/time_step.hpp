@@ -32,9 +32,15 @@ StableStep stable_time_step(const Model& md, const State& st, double cfl, bool d
                             std::size_t first = std::size_t(-1), double* on_reference = nullptr);
 
 // Every cell's own stable step, CFL times the least over its points (with bulk viscosity's factors), into
-// dt_cell (resized to the cells), for the classes of multi-rate steps (subcycles.hpp): exact below
-// `enough`, and at or above it where a cheap lower bound already is.
-void cell_time_steps(const Model& md, const State& st, double cfl, double enough, std::vector<double>& dt_cell);
+// dt_cell (resized to the cells), for the classes of multi-rate steps (subcycles.hpp): the largest
+// k <= levels with 2^k dt <= dt_cell[c] is the cell's own step's. The step itself where it sets that
+// class; where the cheap lower bounds hold the class, or the cell is at the least class already, its
+// points are not measured further.
+void cell_time_steps(const Model& md, const State& st, double cfl, double dt, int levels, std::vector<double>& dt_cell);
+
+// At or above every cell's own stable step (one point of each cell: lambda_min(C) <= min_i C_ii). Below
+// twice the smallest step, every cell takes the smallest (multi-rate steps need no classes then).
+double cell_time_step_ceiling(const Model& md, const State& st, double cfl);
 
 // Smallest principal stretch of F: sqrt of the smallest eigenvalue of C = F^T F (closed form);
 // det F as the kinematics computed it (State::J).

@@ -23,14 +23,16 @@ Progress::Progress(bool show, int ranks, double now, double interval, double t0,
   }
 }
 
-void Progress::banner(bool restart, double setup_s, double mass_scaling) const {
+void Progress::banner(bool restart, double setup_s, double mass_scaling, int subcycling) const {
   if (!show_) return;
+  char rates[48] = "";
+  if (subcycling > 1) std::snprintf(rates, sizeof rates, ", multi-rate steps up to %dx", subcycling);
   if (restart)
-    std::fprintf(out_, "rksolve: %d ranks, restarted from the checkpoint of step %lld, t = %g s (setup %.2f s), running to "
-                "t = %g s\n", ranks_, static_cast<long long>(last_step_), last_t_, setup_s, t_end_);
+    std::fprintf(out_, "rksolve: %d ranks, restarted from the checkpoint of step %lld, t = %g s (setup %.2f s)%s, running to "
+                "t = %g s\n", ranks_, static_cast<long long>(last_step_), last_t_, setup_s, rates, t_end_);
   else
-    std::fprintf(out_, "rksolve: %d ranks, setup %.2f s, mass scaling %.3g, running to t = %g s\n", ranks_, setup_s,
-                mass_scaling, t_end_);
+    std::fprintf(out_, "rksolve: %d ranks, setup %.2f s, mass scaling %.3g%s, running to t = %g s\n", ranks_, setup_s,
+                mass_scaling, rates, t_end_);
 }
 
 void Progress::step(const State& st, double dt, double energy_error, const std::vector<double>& history_row,

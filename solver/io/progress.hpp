@@ -20,7 +20,8 @@ class Progress {
            const std::vector<std::string>& columns, const std::string& first_die, const State& st,
            std::FILE* out = stdout);
 
-  void banner(bool restart, double setup_s, double mass_scaling) const;
+  // subcycling: time.subcycling as resolved (the largest ratio of a particle's step to the smallest)
+  void banner(bool restart, double setup_s, double mass_scaling, int subcycling) const;
   // After a step, at wall time `now`: prints when the interval has passed.
   void step(const State& st, double dt, double energy_error, const std::vector<double>& history_row, double now);
   // steps: this run's (a restart's or a stage's own)

@@ -2,7 +2,8 @@
 
 --stage checkpoint: coarse bar to 12 us, impact-face radius 5.361 mm measured (2026-12-02; converged
 codes 5.44-5.46: this coarse bar approaches from below, as at 80 us), held within 0.005 mm; the
-run writes a checkpoint every 400 of its 586 steps (output.checkpoint_steps), and a copy of the case left
+run writes a checkpoint every 400 of its 586 steps (output.checkpoint_steps; at the end of the multi-rate
+cycle where one falls due), and a copy of the case left
 as a run killed after that mid-run checkpoint leaves it (the final checkpoint, the last frame and the
 history rows after half the remaining time removed) continues with `rksolve CASE --restart` to a last
 frame and a history.csv bitwise equal to the uninterrupted run's.
@@ -76,7 +77,9 @@ if a.stage == "checkpoint":
         previous = newest.with_name(newest.name + ".previous")
         mid.add(checkpoint_clock(previous))
         previous.rename(newest)
-    rkcase.check(len(mid) == 1 and 0 < next(iter(mid))[0] == every < steps,
+    # (the bar takes multi-rate steps by default: a checkpoint due inside a cycle waits for the cycle's
+    # end, at most 15 steps)
+    rkcase.check(len(mid) == 1 and every <= next(iter(mid))[0] < min(every + 16, steps),
                  f"a checkpoint every {every} steps: every rank holds the mid-run one {sorted(mid)} "
                  f"(step, frames, t) of the {steps} steps")
     ck_step, ck_frames, ck_t = next(iter(mid))

@@ -69,8 +69,18 @@ TEST(Progress, NoDieNoStrokeAndQuietPrintsNothing) {
   const std::string text = written(f);
   EXPECT_NE(text.find("ETA 2 s"), std::string::npos) << text;
   EXPECT_EQ(text.find("mm"), std::string::npos) << text;
+  // the banner names multi-rate steps where the run takes them (time.subcycling auto resolves per scene)
+  std::FILE* g = std::tmpfile();
+  ASSERT_NE(g, nullptr);
+  rk::Progress(true, 2, 0.0, 1.0, 0.0, 1.0, {"time"}, "", st, g).banner(false, 0.1, 1, 16);
+  rk::Progress(true, 2, 0.0, 1.0, 0.0, 1.0, {"time"}, "", st, g).banner(false, 0.1, 1, 1);
+  const std::string banners = written(g);
+  EXPECT_NE(banners.find("mass scaling 1, multi-rate steps up to 16x, running to t = 1 s\nrksolve: 2 ranks, setup 0.10 s, "
+                         "mass scaling 1, running to"),
+            std::string::npos) << banners;
+  std::fclose(g);
   rk::Progress quiet(false, 1, 0.0, 1.0, 0.0, 1.0, {"time"}, "", st, f);
-  quiet.banner(false, 0.1, 1);
+  quiet.banner(false, 0.1, 1, 16);
   st.t = 0.7;
   quiet.step(st, 1e-3, 0, {0}, 5.0);
   quiet.done(10, 5.0, 100, 700, 0);

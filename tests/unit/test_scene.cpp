@@ -127,14 +127,24 @@ TEST(Scene, OverridesApplyAndAreValidated) {
   EXPECT_THROW(rk::parse_override("time.cfl"), rk::Error);
 }
 
-// Multi-rate steps: a power of two up to 16, and what they are not built for refused naming the key
+// Multi-rate steps: auto or a power of two up to 16, and what they are not built for refused naming the key
 TEST(Scene, SubcyclingRefusesWhatItIsNotBuiltFor) {
   const auto with = [](const char* value) {
     return std::vector<rk::Override>{rk::parse_override(std::string("time.subcycling=") + value)};
   };
   EXPECT_EQ(rk::load_scene(write_scene(kGood), with("16")).time.subcycling, 16);
-  EXPECT_NE(error_of(kGood, with("6")).find("key 'time.subcycling': must be 1, 2, 4, 8 or 16"), std::string::npos);
+  EXPECT_EQ(rk::load_scene(write_scene(kGood), with("1")).time.subcycling, 1);
+  EXPECT_NE(error_of(kGood, with("6")).find("key 'time.subcycling': must be auto, 1, 2, 4, 8 or 16"), std::string::npos);
+  EXPECT_NE(error_of(kGood, with("fast")), "");
   const std::string upsetting = std::string(RK_SOURCE_DIR) + "/geometry/upsetting/scene.yaml";
+  // auto, the default: the largest ratio where the scene allows it, one rate where it does not; the
+  // resolved deck keeps "auto", so that it resolves again when read with other keys set
+  const rk::Scene bar = rk::load_scene(write_scene(kGood));
+  EXPECT_EQ(bar.time.subcycling, 16);
+  EXPECT_NE(bar.resolved_yaml.find("subcycling: auto"), std::string::npos) << bar.resolved_yaml;
+  EXPECT_EQ(rk::load_scene(write_scene(kGood), with("auto")).time.subcycling, 16);
+  EXPECT_EQ(rk::load_scene(write_scene(kGood), {rk::parse_override("time.stable_step=frequency")}).time.subcycling, 1);
+  EXPECT_EQ(rk::load_scene(upsetting).time.subcycling, 1);
   std::string e;
   try {
     rk::load_scene(upsetting, with("4"));

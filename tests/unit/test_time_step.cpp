@@ -159,10 +159,10 @@ TEST(TimeStep, TheContactsStepOnTheReferencesEdgesInTheSamePass) {
   EXPECT_EQ(none, std::numeric_limits<double>::infinity());
 }
 
-// Each cell's own step, for the classes of multi-rate steps: exact (CFL times the least over its points,
-// to the bit) wherever it is below `enough`, and at least `enough` wherever the cheap bounds skipped it.
-// Cells of two sizes and three strains, 4 and 8x apart, as an impact's crushed foot beside its shank.
-TEST(TimeStep, EachCellsStepIsExactBelowEnough) {
+// Each cell's own step, for the classes of multi-rate steps: in the class of its exact step (CFL times the
+// least over its points) for every cycle length, never above that step, which is never above the ceiling that decides whether classes are counted at all. Cells of two sizes and
+// three strains, 4 and 8x apart, as an impact's crushed foot beside its shank.
+TEST(TimeStep, EachCellsStepIsInItsOwnClass) {
   const std::size_t cells = 24;
   rk::Model md = copper_cells(cells);
   rk::State st = at_rest(md);
@@ -177,26 +177,36 @@ TEST(TimeStep, EachCellsStepIsExactBelowEnough) {
   }
   const double cfl = 0.9, wave = std::sqrt(md.materials[0].wave_speed2(1.0));
   const double least = rk::stable_time_step(md, st, cfl).dt;
+  const auto class_of = [&](double x, int levels) {
+    int k = 0;
+    while (k < levels && double(2 << k) * least <= x) ++k;
+    return k;
+  };
+  const double ceiling = rk::cell_time_step_ceiling(md, st, cfl);
   std::vector<double> dt_cell;
-  for (const double ratio : {2.0, 4.0, 16.0}) {
-    rk::cell_time_steps(md, st, cfl, ratio * least, dt_cell);
+  int classes[5] = {};
+  for (const int levels : {1, 2, 4}) {
+    rk::cell_time_steps(md, st, cfl, least, levels, dt_cell);
     ASSERT_EQ(dt_cell.size(), cells);
-    EXPECT_EQ(*std::min_element(dt_cell.begin(), dt_cell.end()), least) << "the least of them is the stable step";
-    int exact = 0;
     for (std::size_t c = 0; c < cells; ++c) {
       double own = std::numeric_limits<double>::infinity();
       for (auto g = std::size_t(md.cell_points[c]); g < std::size_t(md.cell_points[c + 1]); ++g)
         own = std::min(own, cfl * (md.cell_h0[c] / wave * rk::smallest_stretch(&st.F[9 * g], st.J[g])));
-      if (own < ratio * least) {
-        EXPECT_EQ(dt_cell[c], own) << "cell " << c << ", enough at " << ratio << "x";
-        ++exact;
-      } else {
-        EXPECT_GE(dt_cell[c], ratio * least) << "cell " << c << ": a cell the bounds skip is past enough";
-        EXPECT_LE(dt_cell[c], own * (1 + 1e-15)) << "cell " << c << ": never above its own step";
-      }
+      EXPECT_EQ(class_of(dt_cell[c], levels), class_of(own, levels)) << "cell " << c << ", " << levels << " levels";
+      EXPECT_LE(own, ceiling) << "cell " << c << ": the ceiling is above every cell's step";
+      EXPECT_LE(dt_cell[c], own * (1 + 1e-15)) << "cell " << c << ": never above its own step (a bound: its round-off)";
+      if (levels == 4) ++classes[class_of(own, 4)];
     }
-    EXPECT_GT(exact, 0);
   }
+  EXPECT_GT(classes[0], 0);  // (the cells span the classes: the test compares more than one)
+  EXPECT_GT(classes[2] + classes[3] + classes[4], 0);
+  // a part at rest: the ceiling within the cells' spread of the least (all at the smallest step)
+  const rk::Model even = copper_cells(8);
+  rk::Model md8 = even;
+  for (std::size_t c = 0; c < 8; ++c) md8.cell_h0.push_back(1e-3);
+  rk::State rest = at_rest(md8);
+  for (std::size_t c = 0; c < 8; ++c) rest.cell_J[c] = 1;
+  EXPECT_LT(rk::cell_time_step_ceiling(md8, rest, cfl), 2 * rk::stable_time_step(md8, rest, cfl).dt);
 }
 
 }  // namespace
