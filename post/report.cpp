@@ -96,6 +96,9 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
       << num(prep["wall_s"], 3) << " s) |\n";
     r << "| cost | " << num(solve.ns_per_point_update, 3) << " ns per integration-point update, "
       << num(solve.ns_per_particle_step, 3) << " ns per particle step |\n";
+    if (solve.point_update_share < 1)
+      r << "| multi-rate steps | " << num(100 * solve.point_update_share, 3)
+        << " % of the point updates of one rate (time.subcycling) |\n";
     // the run's largest energy error decides the verdict (an error that peaked and fell back is not good)
     const double err = solve.max_energy_error;
     r << "| energy balance | largest error " << num(100 * err, 3) << " % of the energy scale (at the end "

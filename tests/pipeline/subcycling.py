@@ -37,6 +37,10 @@ rkcase.check(abs(r16 - r1) < 0.035e-2 * r1 and abs(l16 - l1) < 0.035e-2 * l1,
 # measured 0.380 (the foot's cells and their neighbours at the smallest step): a lost class reads 1
 rkcase.check(s16["point_update_share"] < 0.45 and s1["point_update_share"] == 1,  # (the default: 16 here)
              f"{100 * s16['point_update_share']:.1f} % of the point updates of the single-rate run")
+# the report says so where a run took them (rkpost, from solve.json)
+share = f"| multi-rate steps | {100 * s16['point_update_share']:.3g} % of the point updates of one rate"
+rkcase.check(share in (multi / "report.md").read_text() and "multi-rate" not in (single / "report.md").read_text(),
+             f"report.md: '{share}' (and nothing at one rate)")
 # measured 6.1e-4 against 6.3e-4 at the smallest step (both past the start-up, on 2 ranks)
 rkcase.check(s16["max_energy_error"] < 2 * s1["max_energy_error"],
              f"largest energy error {s16['max_energy_error']:.2g} (single rate {s1['max_energy_error']:.2g})")
