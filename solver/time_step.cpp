@@ -100,8 +100,16 @@ void cell_time_steps(const Model& md, const State& st, double cfl, double dt, in
       double trC = 0;  // the cheap lower bounds of stable_time_step: where they hold the class, no more is needed
       for (int k = 0; k < 9; ++k) trC += F[k] * F[k];
       const double bound = cfl * (scale * std::max(2 * std::abs(st.J[g]) / trC, std::sqrt(std::max(gershgorin_floor(F), 0.0))));
+      // and from above, lambda_min(C) <= min_i C_ii: where both bounds are in one class, so is the step
+      const int below = class_of(bound);
+      bool held = below >= least;
+      if (!held) {
+        double least_C = std::numeric_limits<double>::infinity();
+        for (int i = 0; i < 3; ++i) least_C = std::min(least_C, F[i] * F[i] + F[3 + i] * F[3 + i] + F[6 + i] * F[6 + i]);
+        held = class_of(cfl * (scale * std::sqrt(least_C))) == below;
+      }
       // (CFL times the point's step, rounded as stable_time_step rounds the least)
-      dt_cell[c] = std::min(dt_cell[c], class_of(bound) >= least ? bound : cfl * (scale * smallest_stretch(F, st.J[g])));
+      dt_cell[c] = std::min(dt_cell[c], held ? bound : cfl * (scale * smallest_stretch(F, st.J[g])));
       least = class_of(dt_cell[c]);
     }
   }

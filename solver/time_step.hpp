@@ -34,8 +34,9 @@ StableStep stable_time_step(const Model& md, const State& st, double cfl, bool d
 // Every cell's own stable step, CFL times the least over its points (with bulk viscosity's factors), into
 // dt_cell (resized to the cells), for the classes of multi-rate steps (subcycles.hpp): the largest
 // k <= levels with 2^k dt <= dt_cell[c] is the cell's own step's. The step itself where it sets that
-// class; where the cheap lower bounds hold the class, or the cell is at the least class already, its
-// points are not measured further.
+// class; where the cheap lower bounds hold the class, where they and the upper bound min_i C_ii put the
+// point in one class, or where the cell is at the least class already, its points are not measured
+// further.
 void cell_time_steps(const Model& md, const State& st, double cfl, double dt, int levels, std::vector<double>& dt_cell);
 
 // At or above every cell's own stable step (one point of each cell: lambda_min(C) <= min_i C_ii). Below
