@@ -790,12 +790,11 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     s.time.output_interval = t.number("output_interval", s.time.end / 10, {0, 1e6, true, false});
     s.time.mass_scaling_dt = t.number("mass_scaling_dt", 0.0, {0, 1});
     const YAML::Node ratio = t.get("subcycling", false);
-    if (!ratio || ratio.IsNull() || (ratio.IsScalar() && ratio.Scalar() == "auto"))
-      s.time.subcycling = 0;  // auto, resolved once the whole scene is read
-    else
-      s.time.subcycling = t.integer("subcycling", std::nullopt, 1, 16);
-    if (s.time.subcycling & (s.time.subcycling - 1))
+    const bool automatic = !ratio || ratio.IsNull() || (ratio.IsScalar() && ratio.Scalar() == "auto");
+    const std::vector<std::string> ratios = {"1", "2", "4", "8", "16"};
+    if (!automatic && !(ratio.IsScalar() && std::find(ratios.begin(), ratios.end(), ratio.Scalar()) != ratios.end()))
       throw Error(t.where_of("subcycling") + ": must be auto, 1, 2, 4, 8 or 16 (the largest ratio of a particle's step to the smallest)");
+    s.time.subcycling = automatic ? 0 : t.integer("subcycling", std::nullopt, 1, 16);  // 0: auto, resolved once the scene is read
     t.done();
     for (const Die& d : s.dies)  // past bottom dead centre a crank press's ram rises off the part
       if (d.motion.cranked() && s.time.end > d.motion.crank.bottom_dead_centre() * (1 + 1e-12)) {

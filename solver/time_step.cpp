@@ -35,6 +35,12 @@ double gershgorin_floor(const double F[9]) {
   return std::min({c(0, 0) - xy - zx, c(1, 1) - xy - yz, c(2, 2) - yz - zx});
 }
 
+double stretch_ceiling(const double F[9]) {
+  double least = std::numeric_limits<double>::infinity();  // lambda_min(C) <= C_ii (a Rayleigh quotient)
+  for (int i = 0; i < 3; ++i) least = std::min(least, F[i] * F[i] + F[3 + i] * F[3 + i] + F[6 + i] * F[6 + i]);
+  return std::sqrt(least);
+}
+
 namespace {
 
 // the dilatational wave speed in cell c: a point's dt = h_c / this * its smallest stretch (with bulk
@@ -100,14 +106,9 @@ void cell_time_steps(const Model& md, const State& st, double cfl, double dt, in
       double trC = 0;  // the cheap lower bounds of stable_time_step: where they hold the class, no more is needed
       for (int k = 0; k < 9; ++k) trC += F[k] * F[k];
       const double bound = cfl * (scale * std::max(2 * std::abs(st.J[g]) / trC, std::sqrt(std::max(gershgorin_floor(F), 0.0))));
-      // and from above, lambda_min(C) <= min_i C_ii: where both bounds are in one class, so is the step
+      // and from above: where both bounds are in one class, so is the step
       const int below = class_of(bound);
-      bool held = below >= least;
-      if (!held) {
-        double least_C = std::numeric_limits<double>::infinity();
-        for (int i = 0; i < 3; ++i) least_C = std::min(least_C, F[i] * F[i] + F[3 + i] * F[3 + i] + F[6 + i] * F[6 + i]);
-        held = class_of(cfl * (scale * std::sqrt(least_C))) == below;
-      }
+      const bool held = below >= least || class_of(cfl * (scale * stretch_ceiling(F))) == below;
       // (CFL times the point's step, rounded as stable_time_step rounds the least)
       dt_cell[c] = std::min(dt_cell[c], held ? bound : cfl * (scale * smallest_stretch(F, st.J[g])));
       least = class_of(dt_cell[c]);
@@ -120,11 +121,8 @@ double cell_time_step_ceiling(const Model& md, const State& st, double cfl) {
   for (std::size_t c = 0; c < md.cells; ++c) {
     const auto g = std::size_t(md.cell_points[c]);
     if (g == std::size_t(md.cell_points[c + 1])) continue;
-    const double* F = &st.F[9 * g];
-    double least_C = std::numeric_limits<double>::infinity();  // lambda_min(C) <= C_ii (a Rayleigh quotient)
-    for (int i = 0; i < 3; ++i) least_C = std::min(least_C, F[i] * F[i] + F[3 + i] * F[3 + i] + F[6 + i] * F[6 + i]);
     const double factor = st.dt_factor.empty() ? 1.0 : st.dt_factor[g];
-    most = std::max(most, cfl * (md.cell_h0[c] / wave_speed(md, st, c) * factor * std::sqrt(least_C)));
+    most = std::max(most, cfl * (md.cell_h0[c] / wave_speed(md, st, c) * factor * stretch_ceiling(&st.F[9 * g])));
   }
   return most * (1 + 1e-12);  // (past the round-off of the cells' own steps)
 }

@@ -34,13 +34,12 @@ StableStep stable_time_step(const Model& md, const State& st, double cfl, bool d
 // Every cell's own stable step, CFL times the least over its points (with bulk viscosity's factors), into
 // dt_cell (resized to the cells), for the classes of multi-rate steps (subcycles.hpp): the largest
 // k <= levels with 2^k dt <= dt_cell[c] is the cell's own step's. The step itself where it sets that
-// class; where the cheap lower bounds hold the class, where they and the upper bound min_i C_ii put the
-// point in one class, or where the cell is at the least class already, its points are not measured
-// further.
+// class; where the cheap lower bounds hold the class, where they and stretch_ceiling put the point in
+// one class, or where the cell is at the least class already, its points are not measured further.
 void cell_time_steps(const Model& md, const State& st, double cfl, double dt, int levels, std::vector<double>& dt_cell);
 
-// At or above every cell's own stable step (one point of each cell: lambda_min(C) <= min_i C_ii). Below
-// twice the smallest step, every cell takes the smallest (multi-rate steps need no classes then).
+// At or above every cell's own stable step (stretch_ceiling at one point of each cell). Below twice the
+// smallest step, every cell takes the smallest (multi-rate steps need no classes then).
 double cell_time_step_ceiling(const Model& md, const State& st, double cfl);
 
 // Smallest principal stretch of F: sqrt of the smallest eigenvalue of C = F^T F (closed form);
@@ -49,5 +48,8 @@ double smallest_stretch(const double F[9], double detF);
 
 // Gershgorin's lower bound on the smallest eigenvalue of C = F^T F (may be negative: no bound).
 double gershgorin_floor(const double F[9]);
+
+// sqrt(min_i C_ii), C = F^T F: at or above the smallest principal stretch (a Rayleigh quotient).
+double stretch_ceiling(const double F[9]);
 
 }  // namespace rk

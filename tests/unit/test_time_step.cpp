@@ -201,8 +201,7 @@ TEST(TimeStep, EachCellsStepIsInItsOwnClass) {
   EXPECT_GT(classes[0], 0);  // (the cells span the classes: the test compares more than one)
   EXPECT_GT(classes[2] + classes[3] + classes[4], 0);
   // a part at rest: the ceiling within the cells' spread of the least (all at the smallest step)
-  const rk::Model even = copper_cells(8);
-  rk::Model md8 = even;
+  rk::Model md8 = copper_cells(8);
   for (std::size_t c = 0; c < 8; ++c) md8.cell_h0.push_back(1e-3);
   rk::State rest = at_rest(md8);
   for (std::size_t c = 0; c < 8; ++c) rest.cell_J[c] = 1;
