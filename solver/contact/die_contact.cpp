@@ -256,16 +256,16 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     const double* N_sum = N_sum_.data();
     const std::size_t blocks = block_N_sum_.size();
     for (std::size_t b = 0; b < blocks; ++b) {
-      double& lowest = block_floor_[k * blocks + b];
+      double& block_floor = block_floor_[k * blocks + b];
       double& pending = block_moved_[k * blocks + b];
       double& pending_die = block_die_moved_[k * blocks + b];
       pending += moved, pending_die += die_moved;
-      lowest -= block_N_sum_[b] * moved + die_moved;
-      if (lowest > clear) continue;
+      block_floor -= block_N_sum_[b] * moved + die_moved;
+      if (block_floor > clear) continue;
       const std::size_t s0 = b * kBlock, s1 = std::min(slaves, s0 + kBlock);
       for (std::size_t s = s0; s < s1; ++s) clearance[s] -= N_sum[s] * pending + pending_die;
       pending = pending_die = 0;
-      lowest = std::numeric_limits<double>::infinity();
+      double lowest = std::numeric_limits<double>::infinity();  // (in a register: the block's new floor)
       for (std::size_t s = s0; s < s1; ++s) {
         double& c = clearance[s];
         if (c > clear) {
@@ -309,6 +309,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
         (s < particles_.size() ? tot.contacts : tot.point_contacts) += 1;
         active_.push_back(a);
       }
+      block_floor = lowest;
     }
   }
   if (shear_) face_friction(md, st, t, dt, dt_min, largest);
