@@ -54,6 +54,31 @@ inline bool any(LaneMask m) {
 #endif
 }
 
+// kLanes consecutive values x[0 .. kLanes) across the lanes: one vector load (a lane written one at a
+// time through memory and then read as a vector stalls its load until the writes land).
+inline Lane load_lanes(const double* x) {
+  Lane v;
+  __builtin_memcpy(&v, x, sizeof v);
+  return v;
+}
+// x[0], x[stride], .. x[(kLanes - 1) stride] across the lanes, built in the registers (for the same reason;
+// a gather instruction measured slower): component i of kLanes consecutive points of `stride` values.
+template <int stride>
+inline Lane strided_lanes(const double* x) {
+#if defined(__AVX512F__)
+  return (Lane)_mm512_set_pd(x[7 * stride], x[6 * stride], x[5 * stride], x[4 * stride], x[3 * stride], x[2 * stride],
+                             x[stride], x[0]);
+#elif defined(__AVX__)
+  return (Lane)_mm256_set_pd(x[3 * stride], x[2 * stride], x[stride], x[0]);
+#elif defined(__SSE2__)
+  return (Lane)_mm_set_pd(x[stride], x[0]);
+#else
+  Lane v;
+  for (int l = 0; l < kLanes; ++l) v[l] = x[l * stride];
+  return v;
+#endif
+}
+
 // r^(1/3) for r near 1 (the F-bar ratio Jbar/J): two Newton steps from 1 + e/3 - e^2/9, e = r - 1,
 // reach round-off for |e| <= 0.1 (initial error 5e^3/81, squared by each step); lanes farther out
 // take std::cbrt. Replaces a libm call per point (docs/decisions.md, "Speed").

@@ -13,6 +13,10 @@ namespace {
 
 // F of the points g .. g+n across the lanes (the rest of the lanes the identity).
 void lanes_of_F(const State& st, std::size_t g, int n, Mat& F) {
+  if (n == kLanes) {
+    for (int i = 0; i < 9; ++i) F.v[i] = strided_lanes<9>(&st.F[9 * g + std::size_t(i)]);
+    return;
+  }
   for (int l = 0; l < kLanes; ++l)
     for (int i = 0; i < 9; ++i) F.v[i][l] = l < n ? st.F[9 * (g + l) + i] : (i % 4 == 0);
 }
@@ -33,7 +37,10 @@ Lane green_strain2(const Mat& F) {
 void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n, const Mat& F, J2Batch& b,
           Lane& stretch) {
   Lane r = splat(1);  // Jbar / J (the lanes at rest: 1)
-  if (md.fbar) {
+  const bool whole = n == kLanes;  // a whole batch: its lanes read as vectors
+  if (md.fbar && whole) {
+    r = st.cell_J[c] / load_lanes(&st.J[g]);
+  } else if (md.fbar) {
     Lane J = splat(1);
     LaneMask used{};
     for (int l = 0; l < n; ++l) J[l] = st.J[g + l], used[l] = -1;
@@ -44,16 +51,21 @@ void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n,
   // pushed forward at a reference update with the whole F, so the total stretch is right here.
   if (md.thermal_strain())
     for (int l = 0; l < n; ++l) stretch[l] = md.thermal_stretch(st.temperature[g + l]), ratio[l] /= stretch[l];
-  for (int l = 0; l < kLanes; ++l) {
-    if (l >= n) {
-      b.at_rest(l);
-      continue;
+  if (whole && st.temperature.empty() && st.plastic_rate.empty()) {
+    for (int i = 0; i < 6; ++i) b.cp_inv.v[i] = strided_lanes<6>(&st.cp_inv[6 * g + std::size_t(i)]);
+    b.ep = load_lanes(&st.ep[g]);
+  } else {
+    for (int l = 0; l < kLanes; ++l) {
+      if (l >= n) {
+        b.at_rest(l);
+        continue;
+      }
+      const std::size_t p = g + l;
+      for (int i = 0; i < 6; ++i) b.cp_inv.v[i][l] = st.cp_inv[6 * p + i];
+      b.ep[l] = st.ep[p];
+      if (!st.temperature.empty()) b.T[l] = st.temperature[p];
+      if (!st.plastic_rate.empty()) b.rate_last[l] = st.plastic_rate[p];
     }
-    const std::size_t p = g + l;
-    for (int i = 0; i < 6; ++i) b.cp_inv.v[i][l] = st.cp_inv[6 * p + i];
-    b.ep[l] = st.ep[p];
-    if (!st.temperature.empty()) b.T[l] = st.temperature[p];
-    if (!st.plastic_rate.empty()) b.rate_last[l] = st.plastic_rate[p];
   }
   for (int i = 0; i < 9; ++i) b.F.v[i] = ratio * F.v[i];  // (the lanes at rest: 1 times the identity)
   // the increment from the last state took the last step (0 at the start: no rate); with multi-rate
@@ -66,10 +78,15 @@ void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n,
 void first_piola(const Model& md, State& st, std::size_t g, int n, double pc, const Mat& F, const Sym& tau) {
   Mat cof;
   Lane J{}, q{};  // the volume ratio from t = 0 and the bulk viscosity's pressure (the rest of the lanes the last point's)
-  for (int l = 0; l < kLanes; ++l) {
-    const std::size_t p = g + std::size_t(std::min(l, n - 1));
-    J[l] = st.total_J(p);
-    if (!st.q.empty()) q[l] = st.q[p];
+  if (n == kLanes) {  // (as State::total_J)
+    J = st.J_ref.empty() ? load_lanes(&st.J[g]) : load_lanes(&st.J[g]) * load_lanes(&st.J_ref[g]);
+    if (!st.q.empty()) q = load_lanes(&st.q[g]);
+  } else {
+    for (int l = 0; l < kLanes; ++l) {
+      const std::size_t p = g + std::size_t(std::min(l, n - 1));
+      J[l] = st.total_J(p);
+      if (!st.q.empty()) q[l] = st.q[p];
+    }
   }
   Lane shift = md.fbar ? J * pc - (tau.v[0] + tau.v[1] + tau.v[2]) / 3 : Lane{};
   if (!st.q.empty()) shift -= J * q;  // (material/bulk_viscosity.hpp)
@@ -84,7 +101,9 @@ void first_piola(const Model& md, State& st, std::size_t g, int n, double pc, co
       norm2 += P[3 * i + j] * P[3 * i + j];
     }
   Lane w{}, dN_max{};
-  for (int l = 0; l < n; ++l) w[l] = md.weight[g + l], dN_max[l] = md.dN_max[g + l];
+  if (n == kLanes) w = load_lanes(&md.weight[g]), dN_max = load_lanes(&md.dN_max[g]);
+  else
+    for (int l = 0; l < n; ++l) w[l] = md.weight[g + l], dN_max[l] = md.dN_max[g + l];
   const Lane bound = w * sqrt(norm2) * dN_max;
   for (int l = 0; l < n; ++l) {
     for (int i = 0; i < 9; ++i) st.P[9 * (g + l) + i] = P[i][l];
@@ -179,7 +198,9 @@ StressHealth update_points(const Model& md, State& st, const PressureBound& boun
       load(md, st, c, g, n, F, b, stretch);
       j2_update(law, b);
       Lane weight{};
-      for (int l = 0; l < n; ++l) weight[l] = md.weight[g + l];
+      if (n == kLanes) weight = load_lanes(&md.weight[g]);
+      else
+        for (int l = 0; l < n; ++l) weight[l] = md.weight[g + l];
       const Lane weighted_mean = weight * (b.tau.v[0] + b.tau.v[1] + b.tau.v[2]) / 3;  // w tr(tau) / 3, for the cell's pressure
       for (int l = 0; l < n; ++l) {
         const std::size_t p = g + l;
