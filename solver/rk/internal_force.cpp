@@ -38,14 +38,14 @@ void add_point_forces(const Model& md, const std::vector<double>& P_all, std::ve
   const double* dN = md.dN.data();
   const std::int32_t* nbr = md.nbr.data();
   for (const std::int32_t g : points) {
-    // w times the fixed-point scale, a power of two: ws x rounds exactly as scale.fixed(w x) does
+    // P's columns times w and the fixed-point scale (a power of two), once a point instead of once a term
     const double ws = md.weight[g] * scale.to_fixed;
     const double* P = &P_all[9 * std::size_t(g)];
-    const Row3 column[3] = {make_row3(P[0], P[3], P[6]), make_row3(P[1], P[4], P[7]), make_row3(P[2], P[5], P[8])};
+    const Row3 column[3] = {ws * make_row3(P[0], P[3], P[6]), ws * make_row3(P[1], P[4], P[7]), ws * make_row3(P[2], P[5], P[8])};
     const std::int64_t k1 = md.nbr_offsets[g + 1];  // (held: the stores below may alias the offsets)
     for (auto k = md.nbr_offsets[g]; k < k1; ++k) {
       const Row3 d = load_row3(&dN[3 * std::size_t(k)]);
-      const FixedRow3 f = truncate_row(ws * (column[0] * d[0] + column[1] * d[1] + column[2] * d[2]));
+      const FixedRow3 f = truncate_row(column[0] * d[0] + column[1] * d[1] + column[2] * d[2]);
       add_row(&partial[kForceStride * std::size_t(nbr[k])], f);
     }
   }

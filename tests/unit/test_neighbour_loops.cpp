@@ -36,7 +36,8 @@ void affine(const rk::Model& md, const double* A, double shift, std::vector<doub
       d[3 * I + i] = A[3 * i] * md.X[3 * I] + A[3 * i + 1] * md.X[3 * I + 1] + A[3 * i + 2] * md.X[3 * I + 2] + shift;
 }
 
-// The plain sum in the neighbours' order, with the same multiply-adds: F_ij = delta_ij + sum_k d_Ji dN_kj.
+// The plain sum in the neighbours' order: F_ij = delta_ij + sum_k d_Ji dN_kj (the solver sums the even and
+// the odd terms apart, so the two differ by their rounding).
 double plain_F(const rk::Model& md, const rk::State& st, std::size_t g, int i, int j) {
   double F = i == j;
   for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
@@ -75,8 +76,8 @@ TEST(NeighbourLoops, AnAffineDisplacementGivesItsGradientAtEveryPointBeforeAndAf
       }
       worst_J = std::max(worst_J, std::abs(st.J[g] - detF));
     }
-    // measured (2026-12-04): F 3.9e-15 off I + A, det F 6.4e-15, the plain sum 1.3e-15 (its own
-    // rounding), before and after the update alike; a gradient that lost a column, a neighbour or
+    // measured (2026-12-06, the even and odd terms summed apart): F 4.3e-15 off I + A, det F 6.0e-15,
+    // the plain sum 1.6e-15 (the two orders' rounding), before and after the update alike; a gradient that lost a column, a neighbour or
     // d^ref would be off by 1e-3 or more
     EXPECT_LT(worst, 1e-14) << (updated ? "after" : "before") << " the update";
     EXPECT_LT(worst_J, 1.5e-14);
