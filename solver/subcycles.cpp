@@ -65,7 +65,7 @@ void Subcycles::plan(const Model& md, const std::vector<double>& dt_cell, double
   for (std::size_t c = 0; c < md.cells; ++c) {
     int limit = 0;
     while (limit < levels && double(2 << limit) * dt <= dt_cell[c]) ++limit;
-    if (limit == kMaxLevels) continue;
+    if (limit == levels) continue;  // (no particle's class is counted past the cycle's)
     for (auto k = support_offsets_[c]; k < support_offsets_[c + 1]; ++k)
       ++counts_[kForceStride * std::size_t(support_[std::size_t(k)]) + std::size_t(limit)];
   }
@@ -84,7 +84,7 @@ void Subcycles::plan(const Model& md, const std::vector<double>& dt_cell, double
   levels = levels_ = largest(top);
   for (std::size_t c = 0; c < md.cells; ++c) {
     int k = levels;
-    for (auto j = support_offsets_[c]; j < support_offsets_[c + 1]; ++j)
+    for (auto j = support_offsets_[c]; j < support_offsets_[c + 1] && k > 0; ++j)
       k = std::min(k, int(particle_class_[std::size_t(support_[std::size_t(j)])]));
     cell_class_[c] = std::int8_t(k);
   }
