@@ -33,10 +33,12 @@ Sym log_series(const Sym& X, Lane norm, LaneMask use) {
   return splat(2) * commuting_product(Y, r);
 }
 
-Sym exp_series(const Sym& A, Lane norm) {  // exp(A) = sum_k A^k / k!, Horner form
-  Lane n = splat(1);
-  Lane t = norm;
-  for (int k = 1; k < 40; ++k, t *= norm) {
+// exp(A) = sum_k A^k / k!, Horner form, to the last term whose bound |A|^k / k! is above 1e-17 (past
+// it the bounds only fall)
+Sym exp_series(const Sym& A, Lane norm) {
+  Lane n{};
+  Lane t = norm;  // |A|^k / k!
+  for (int k = 1; k < 40; ++k, t *= norm / (k + 1)) {
     const LaneMask more = t > 1e-17;
     if (!any(more)) break;
     n += select(more, splat(1), Lane{});
