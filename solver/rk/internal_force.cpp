@@ -43,7 +43,7 @@ void add_point_forces(const Model& md, const std::vector<double>& P_all, std::ve
     const double* P = &P_all[9 * std::size_t(g)];
     const Row3 column[3] = {ws * make_row3(P[0], P[3], P[6]), ws * make_row3(P[1], P[4], P[7]), ws * make_row3(P[2], P[5], P[8])};
     const std::int64_t k1 = md.nbr_offsets[g + 1];  // (held: the stores below may alias the offsets)
-#pragma GCC unroll 2  // (two terms an iteration: the loop's own counting is a sixth of a term's instructions)
+#pragma GCC unroll 2  // (two terms an iteration: half the loop's own increments and branches a term)
     for (auto k = md.nbr_offsets[g]; k < k1; ++k) {
       const Row3 d = load_row3(&dN[3 * std::size_t(k)]);
       const FixedRow3 f = truncate_row(column[0] * d[0] + column[1] * d[1] + column[2] * d[2]);
