@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <stdexcept>
 
 #include "material/damage.hpp"
 #include "material/j2_plasticity.hpp"
@@ -11,14 +12,30 @@
 namespace rk {
 namespace {
 
-// F of the points g .. g+n across the lanes (the rest of the lanes the identity).
-void lanes_of_F(const State& st, std::size_t g, int n, Mat& F) {
-  if (n == kLanes) {
-    for (int i = 0; i < 9; ++i) F.v[i] = strided_lanes<9>(&st.F[9 * g + std::size_t(i)]);
+// Up to kLanes points of one update, one a lane: `whole` where they are kLanes consecutive points, whose
+// values are then read across the lanes as vectors.
+struct Batch {
+  const std::size_t* point;
+  int n;
+  bool whole;
+};
+
+// The k-th batch of the points pts[0 .. count).
+Batch batch_of(const std::size_t* pts, std::size_t count, std::size_t k) {
+  Batch bt{pts + k * kLanes, int(std::min<std::size_t>(kLanes, count - k * kLanes)), false};
+  bt.whole = bt.n == kLanes;
+  for (int l = 1; l < bt.n && bt.whole; ++l) bt.whole = bt.point[l] == bt.point[0] + std::size_t(l);
+  return bt;
+}
+
+// F of the batch's points across the lanes (the rest of the lanes the identity).
+void lanes_of_F(const State& st, const Batch& bt, Mat& F) {
+  if (bt.whole) {
+    for (int i = 0; i < 9; ++i) F.v[i] = strided_lanes<9>(&st.F[9 * bt.point[0] + std::size_t(i)]);
     return;
   }
   for (int l = 0; l < kLanes; ++l)
-    for (int i = 0; i < 9; ++i) F.v[i][l] = l < n ? st.F[9 * (g + l) + i] : (i % 4 == 0);
+    for (int i = 0; i < 9; ++i) F.v[i][l] = l < bt.n ? st.F[9 * bt.point[l] + std::size_t(i)] : (i % 4 == 0);
 }
 
 // |F^T F - I|^2 across the lanes.
@@ -32,26 +49,27 @@ Lane green_strain2(const Mat& F) {
   return e2;
 }
 
-// The points g .. g+n of one cell, kLanes at a time (the rest of the lanes at rest), F theirs across
-// the lanes; with a thermal strain their stress-free stretches into `stretch`.
-void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n, const Mat& F, J2Batch& b,
-          Lane& stretch) {
+// The batch's points (the rest of the lanes at rest), F theirs across the lanes, of cell c with F-bar
+// (without, the cell whose last update time they share); with a thermal strain their stress-free
+// stretches into `stretch`.
+void load(const Model& md, const State& st, std::size_t c, const Batch& bt, const Mat& F, J2Batch& b, Lane& stretch) {
   Lane r = splat(1);  // Jbar / J (the lanes at rest: 1)
-  const bool whole = n == kLanes;  // a whole batch: its lanes read as vectors
-  if (md.fbar && whole) {
+  const std::size_t g = bt.point[0];
+  const int n = bt.n;
+  if (md.fbar && bt.whole) {
     r = st.cell_J[c] / load_lanes(&st.J[g]);
   } else if (md.fbar) {
     Lane J = splat(1);
     LaneMask used{};
-    for (int l = 0; l < n; ++l) J[l] = st.J[g + l], used[l] = -1;
+    for (int l = 0; l < n; ++l) J[l] = st.J[bt.point[l]], used[l] = -1;
     r = select(used, st.cell_J[c] / J, r);
   }
   Lane ratio = cube_root_near_one(r);
   // the thermal stretch taken out: F_mech = F / stretch(T) (1 + alpha (T - T0), or from rho(T)). C_p^-1 is
   // pushed forward at a reference update with the whole F, so the total stretch is right here.
   if (md.thermal_strain())
-    for (int l = 0; l < n; ++l) stretch[l] = md.thermal_stretch(st.temperature[g + l]), ratio[l] /= stretch[l];
-  if (whole && st.temperature.empty() && st.plastic_rate.empty()) {
+    for (int l = 0; l < n; ++l) stretch[l] = md.thermal_stretch(st.temperature[bt.point[l]]), ratio[l] /= stretch[l];
+  if (bt.whole && st.temperature.empty() && st.plastic_rate.empty()) {
     for (int i = 0; i < 6; ++i) b.cp_inv.v[i] = strided_lanes<6>(&st.cp_inv[6 * g + std::size_t(i)]);
     b.ep = load_lanes(&st.ep[g]);
   } else {
@@ -60,7 +78,7 @@ void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n,
         b.at_rest(l);
         continue;
       }
-      const std::size_t p = g + l;
+      const std::size_t p = bt.point[l];
       for (int i = 0; i < 6; ++i) b.cp_inv.v[i][l] = st.cp_inv[6 * p + i];
       b.ep[l] = st.ep[p];
       if (!st.temperature.empty()) b.T[l] = st.temperature[p];
@@ -73,17 +91,19 @@ void load(const Model& md, const State& st, std::size_t c, std::size_t g, int n,
   b.dt = st.cell_t_last.empty() ? st.dt_half : st.t - st.cell_t_last[c];
 }
 
-// P = tau_eff F^{-T} = tau_eff cof(F) / det F for the points g .. g+n (tau theirs across the lanes),
+// P = tau_eff F^{-T} = tau_eff cof(F) / det F for the batch's points (tau theirs across the lanes),
 // and their force bounds.
-void first_piola(const Model& md, State& st, std::size_t g, int n, double pc, const Mat& F, const Sym& tau) {
+void first_piola(const Model& md, State& st, const Batch& bt, double pc, const Mat& F, const Sym& tau) {
   Mat cof;
+  const std::size_t g = bt.point[0];
+  const int n = bt.n;
   Lane J{}, q{};  // the volume ratio from t = 0 and the bulk viscosity's pressure (the rest of the lanes the last point's)
-  if (n == kLanes) {  // (as State::total_J)
+  if (bt.whole) {  // (as State::total_J)
     J = st.J_ref.empty() ? load_lanes(&st.J[g]) : load_lanes(&st.J[g]) * load_lanes(&st.J_ref[g]);
     if (!st.q.empty()) q = load_lanes(&st.q[g]);
   } else {
     for (int l = 0; l < kLanes; ++l) {
-      const std::size_t p = g + std::size_t(std::min(l, n - 1));
+      const std::size_t p = bt.point[std::min(l, n - 1)];
       J[l] = st.total_J(p);
       if (!st.q.empty()) q[l] = st.q[p];
     }
@@ -101,13 +121,13 @@ void first_piola(const Model& md, State& st, std::size_t g, int n, double pc, co
       norm2 += P[3 * i + j] * P[3 * i + j];
     }
   Lane w{}, dN_max{};
-  if (n == kLanes) w = load_lanes(&md.weight[g]), dN_max = load_lanes(&md.dN_max[g]);
+  if (bt.whole) w = load_lanes(&md.weight[g]), dN_max = load_lanes(&md.dN_max[g]);
   else
-    for (int l = 0; l < n; ++l) w[l] = md.weight[g + l], dN_max[l] = md.dN_max[g + l];
+    for (int l = 0; l < n; ++l) w[l] = md.weight[bt.point[l]], dN_max[l] = md.dN_max[bt.point[l]];
   const Lane bound = w * sqrt(norm2) * dN_max;
   for (int l = 0; l < n; ++l) {
-    for (int i = 0; i < 9; ++i) st.P[9 * (g + l) + i] = P[i][l];
-    st.force_bound[g + l] = bound[l];
+    for (int i = 0; i < 9; ++i) st.P[9 * bt.point[l] + i] = P[i][l];
+    st.force_bound[bt.point[l]] = bound[l];
   }
 }
 
@@ -126,12 +146,14 @@ void check_pressure(const J2Params& law, const PressureBound& b, double floor, d
 
 static_assert(kMaxCellPoints >= std::size_t(kLanes));
 
-// The damage criteria over the points g0 .. g1 of one cell (or batch), at the stress the force uses:
-// with F-bar the point's deviator and the cell's pressure (Kirchhoff, pc per unit J), which is free of
-// the point-to-point pressure scatter of the point's own.
-void accumulate_damage(const Model& md, State& st, std::size_t g0, std::size_t g1, double pc, const double* increment) {
-  for (auto p = g0; p < g1; ++p) {
-    const double dep = increment[p - g0];
+// The damage criteria over the points pts[0 .. count) of one cell (or batch), at the stress the force
+// uses: with F-bar the point's deviator and the cell's pressure (Kirchhoff, pc per unit J), which is
+// free of the point-to-point pressure scatter of the point's own.
+void accumulate_damage(const Model& md, State& st, const std::size_t* pts, std::size_t count, double pc,
+                       const double* increment) {
+  for (std::size_t j = 0; j < count; ++j) {
+    const std::size_t p = pts[j];
+    const double dep = increment[j];
     if (!(dep > 0)) continue;
     const double* t = &st.tau[6 * p];
     const double shift = md.fbar ? st.total_J(p) * pc - (t[0] + t[1] + t[2]) / 3 : 0.0;
@@ -144,18 +166,11 @@ void accumulate_damage(const Model& md, State& st, std::size_t g0, std::size_t g
   }
 }
 
-// Without F-bar, the end of the batch that starts at point g0: at most kLanes points, of one material.
-std::size_t batch_end(const Model& md, std::size_t g0) {
-  std::size_t g1 = g0 + 1;
-  while (g1 < std::min(md.m, g0 + kLanes) && md.point_material[g1] == md.point_material[g0]) ++g1;
-  return g1;
-}
-
 }  // namespace
 
 namespace {
 
-// listed: the cells of `cells` only (F-bar), else every point
+// listed: the points of the cells in `cells` only (multi-rate steps: the cells due), else every point
 StressHealth update_points(const Model& md, State& st, const PressureBound& bound, bool listed,
                            std::span<const std::int32_t> cells) {
   StressHealth health;
@@ -166,49 +181,69 @@ StressHealth update_points(const Model& md, State& st, const PressureBound& boun
   // copy of these structs is a memmove call); an F-bar cell holds at most kMaxCellPoints points
   J2Batch batch[(kMaxCellPoints + kLanes - 1) / kLanes];
   Mat F_batch[std::size(batch)];
-  // F-bar couples the points of a cell; without it (volumetric: none, nodal integration) the points
-  // go kLanes at a time whatever their cells, of one material each batch
+  std::size_t pts[kMaxCellPoints];  // the points updated together: an F-bar cell's, or a batch's
   const std::size_t count = listed ? cells.size() : md.cells;
-  for (std::size_t i = 0, c = 0, g0 = 0, g1 = 0; md.fbar ? i < count : g1 < md.m; ++i, g0 = g1) {
-    c = listed ? std::size_t(cells[i]) : i;
-    if (md.fbar) g0 = std::size_t(md.cell_points[c]), g1 = std::size_t(md.cell_points[c + 1]);
-    else g1 = batch_end(md, g0);
-    if (g0 == g1) continue;
-    const J2Params& law = md.material_at(g0).law;  // (a cell never spans two bodies)
+  const auto cell_at = [&](std::size_t i) { return listed ? std::size_t(cells[i]) : i; };
+  // F-bar couples the points of a cell; without it (volumetric: none, nodal integration, one point a
+  // cell) the points go kLanes at a time whatever their cells, of one material each batch, and where
+  // listed, of cells last updated together (their increment's time)
+  for (std::size_t i = 0, g_next = 0; md.fbar || listed ? i < count : g_next < md.m;) {
+    std::size_t npts = 0, c = 0;
+    if (md.fbar) {
+      c = cell_at(i++);
+      for (auto g = md.cell_points[c]; g < md.cell_points[c + 1]; ++g) pts[npts++] = std::size_t(g);
+    } else if (!listed) {
+      const std::size_t g0 = g_next;
+      do pts[npts++] = g_next++;
+      while (npts < std::size_t(kLanes) && g_next < md.m && md.point_material[g_next] == md.point_material[g0]);
+    } else {  // (multi-rate steps without F-bar: cells of one point, gauss_order 1)
+      c = cell_at(i);
+      for (; i < count && npts < std::size_t(kLanes); ++i) {
+        const std::size_t ci = cell_at(i), g = std::size_t(md.cell_points[ci]);
+        if (!st.cell_t_last.empty() && st.cell_t_last[ci] != st.cell_t_last[c]) break;
+        if (md.cell_points[ci + 1] - md.cell_points[ci] > 1)
+          throw std::logic_error("update_stress: a listed cell of more than one point without F-bar");
+        if (md.cell_points[ci + 1] == md.cell_points[ci]) continue;
+        if (npts > 0 && md.point_material[g] != md.point_material[pts[0]]) break;
+        pts[npts++] = g;
+      }
+    }
+    if (npts == 0) continue;
+    const J2Params& law = md.material_at(pts[0]).law;  // (a cell never spans two bodies)
     bool cell_ok = true;
-    for (auto g = g0; g < g1; ++g)
-      if (!(st.J[g] > 0) || !std::isfinite(st.J[g])) {
+    for (std::size_t j = 0; j < npts; ++j)
+      if (const std::size_t g = pts[j]; !(st.J[g] > 0) || !std::isfinite(st.J[g])) {
         if (health.ok) health = {false, g, st.J[g]};
         cell_ok = false;
       }
     if (!cell_ok) continue;
     double wp = 0, wJ = 0, w = 0, ep_max = 0;
     double increment[kMaxCellPoints];  // the points' plastic strain increments (for the damage)
-    for (auto g = g0; g < g1; g += kLanes) {
-      const int n = int(std::min<std::size_t>(kLanes, g1 - g));
-      const std::size_t k = (g - g0) / kLanes;
+    for (std::size_t k = 0; k * kLanes < npts; ++k) {
+      const Batch bt = batch_of(pts, npts, k);
+      const int n = bt.n;
       Mat& F = F_batch[k];
       J2Batch& b = batch[k];
-      lanes_of_F(st, g, n, F);
+      lanes_of_F(st, bt, F);
       if (md.green_strain) {
         const Lane e2 = green_strain2(F);  // (the rest of the lanes the identity: 0)
         for (int l = 0; l < n; ++l) health.green_strain2 = std::max(health.green_strain2, e2[l]);
       }
       Lane stretch;
-      load(md, st, c, g, n, F, b, stretch);
+      load(md, st, c, bt, F, b, stretch);
       j2_update(law, b);
       Lane weight{};
-      if (n == kLanes) weight = load_lanes(&md.weight[g]);
+      if (bt.whole) weight = load_lanes(&md.weight[bt.point[0]]);
       else
-        for (int l = 0; l < n; ++l) weight[l] = md.weight[g + l];
+        for (int l = 0; l < n; ++l) weight[l] = md.weight[bt.point[l]];
       const Lane weighted_mean = weight * (b.tau.v[0] + b.tau.v[1] + b.tau.v[2]) / 3;  // w tr(tau) / 3, for the cell's pressure
       for (int l = 0; l < n; ++l) {
-        const std::size_t p = g + l;
+        const std::size_t p = bt.point[l];
         double* t = &st.tau[6 * p];
         const double trace_before = t[0] + t[1] + t[2];
         for (int i = 0; i < 6; ++i) t[i] = b.tau.v[i][l], st.cp_inv[6 * p + i] = b.cp_inv.v[i][l];
         if (!st.plastic_rate.empty()) st.plastic_rate[p] = b.dt > 0 ? (b.ep[l] - st.ep[p]) / b.dt : 0.0;
-        if (!st.damage.empty()) increment[p - g0] = b.ep[l] - st.ep[p];
+        if (!st.damage.empty()) increment[k * kLanes + std::size_t(l)] = b.ep[l] - st.ep[p];
         st.ep[p] = b.ep[l];
         st.psi[p] = b.psi[l];
         st.wp[p] += b.dissipation[l];
@@ -237,16 +272,13 @@ StressHealth update_points(const Model& md, State& st, const PressureBound& boun
         ep_max = std::max(ep_max, st.ep[p]);
       }
     }
+    const std::size_t g0 = pts[0];
     if (md.fbar && !(wJ > kMinVolumeRatio * w && wJ < w / kMinVolumeRatio) && health.ok) health = {false, g0, wJ / w};
     if (md.fbar && health.ok) check_pressure(law, bound, floor, (st.q.empty() ? 0.0 : st.q[g0]) - wp / wJ, ep_max, g0, health);
     if (!health.ok) continue;
     const double pc = md.fbar ? wp / wJ : 0.0;
-    if (!st.damage.empty()) accumulate_damage(md, st, g0, g1, pc, increment);
-    for (auto g = g0; g < g1; g += kLanes) {
-      const int n = int(std::min<std::size_t>(kLanes, g1 - g));
-      const std::size_t k = (g - g0) / kLanes;
-      first_piola(md, st, g, n, pc, F_batch[k], batch[k].tau);
-    }
+    if (!st.damage.empty()) accumulate_damage(md, st, pts, npts, pc, increment);
+    for (std::size_t k = 0; k * kLanes < npts; ++k) first_piola(md, st, batch_of(pts, npts, k), pc, F_batch[k], batch[k].tau);
   }
   st.thermal_work += thermal_work;
   return health;

@@ -1,12 +1,15 @@
 // The stress update's cell-level work (solver/material/stress_update.cpp), on one F-bar cell whose
 // points compress, stretch and shear differently: every point takes the cell's volume change (F-bar),
 // P carries the cell's pressure and the bulk viscosity's, and each force bound is w |P| max |grad N|.
+// And with multi-rate steps on cells of one point (no F-bar): only the listed cells' points are
+// updated, each as the update of every point updates it.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "material/stress_update.hpp"
 
@@ -85,6 +88,46 @@ TEST(StressUpdate, FbarCellPressureAndForceBounds) {
       EXPECT_NEAR(c.st.force_bound[g] / (c.md.weight[g] * P.norm() * c.md.dN_max[g]), 1.0, 4.5e-16) << "point " << g;
     }
   }
+}
+
+// Cells of one point (gauss_order 1, where the model has no F-bar), some listed as multi-rate steps list
+// the cells due (in class order, not memory order): the listed points take exactly the stress, state and
+// P that updating every point gives them (each lane computes what it would alone, however the points
+// are batched), and the others are not touched. Before, the listed update of such cells updated every
+// point and read the list past its end.
+TEST(StressUpdate, OnlyTheListedCellsOfOnePointAreUpdated) {
+  const std::size_t m = 21;
+  rk::Model md;
+  md.m = m, md.cells = m, md.fbar = false;
+  for (std::size_t c = 0; c <= m; ++c) md.cell_points.push_back(std::int32_t(c));
+  for (std::size_t g = 0; g < m; ++g) md.weight.push_back(1e-9), md.dN_max.push_back(1e3);
+  rk::single_material(md, rk::J2Params::from(117.0e9, 0.35, 400.0e6, 100.0e6, true), 8930);
+  rk::State all = rk::State::initial(md, std::array<double, 3>{}.data(), std::array<double, 9>{}.data());
+  for (std::size_t g = 0; g < m; ++g) {  // up to 1 % shear: some points past yield
+    double* F = &all.F[9 * g];
+    const double s = 1 + 2e-4 * double(g % 5), gamma = 5e-4 * double(g);
+    F[0] = s, F[1] = s * gamma, F[4] = s, F[8] = s;
+    all.J[g] = s * s * s, all.cell_J[g] = all.J[g];
+  }
+  all.cell_t_last.assign(m, 0.0), all.t = 1e-7;
+  rk::State listed = all;
+  std::fill(listed.tau.begin(), listed.tau.end(), -1.0);  // (a stress no update leaves)
+  ASSERT_TRUE(rk::update_stress(md, all, {0, 0}).ok);
+  const std::vector<std::int32_t> due = {2, 3, 4, 5, 6, 7, 8, 9, 10, 17, 0, 1, 20};  // 13: two batches, one split
+  ASSERT_TRUE(rk::update_stress(md, listed, {0, 0}, due).ok);
+  std::size_t plastic = 0;
+  for (std::size_t g = 0; g < m; ++g) {
+    const bool is_due = std::find(due.begin(), due.end(), std::int32_t(g)) != due.end();
+    for (int i = 0; i < 6; ++i) {
+      if (is_due) EXPECT_EQ(listed.tau[6 * g + i], all.tau[6 * g + i]) << "point " << g;
+      else EXPECT_EQ(listed.tau[6 * g + i], -1.0) << "point " << g << " is not due";
+    }
+    if (is_due)
+      for (int i = 0; i < 9; ++i) EXPECT_EQ(listed.P[9 * g + i], all.P[9 * g + i]) << "point " << g;
+    plastic += all.ep[g] > 0;
+    EXPECT_EQ(listed.ep[g], is_due ? all.ep[g] : 0.0) << "point " << g;
+  }
+  EXPECT_GT(plastic, 0u) << "some points yield";
 }
 
 }  // namespace
