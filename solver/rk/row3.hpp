@@ -4,6 +4,9 @@
 // docs/decisions.md, "Vector registers in the hot loops").
 #pragma once
 #include <cstdint>
+#ifdef __AVX__
+#include <immintrin.h>
+#endif
 
 namespace rk {
 
@@ -11,7 +14,27 @@ namespace rk {
 using Row3 = double __attribute__((vector_size(32)));
 using FixedRow3 = long long __attribute__((vector_size(32)));
 inline Row3 make_row3(double a, double b, double c) { return Row3{a, b, c, 0.0}; }
+#if defined(__AVX512DQ__) && defined(__AVX512VL__)
 inline FixedRow3 truncate_row(Row3 r) { return __builtin_convertvector(r, FixedRow3); }  // parallel/fixed_point.hpp
+#elif defined(__AVX2__)
+// AVX2 has no packed double -> int64 conversion (the compiler converts lane by lane through the
+// scalar unit: 18 instructions); the same truncation from the bits, exact for |x| < 2^63 (the force
+// terms' bound, parallel/fixed_point.hpp): the mantissa with its leading 1 shifted by the exponent
+// (a shift by 64 or more gives 0: below 1 truncates to 0), then the sign. Unit test: bitwise the
+// scalar conversion's.
+inline FixedRow3 truncate_row(Row3 r) {
+  const __m256i bits = _mm256_castpd_si256(__m256d(r));
+  const __m256i e = _mm256_and_si256(_mm256_srli_epi64(bits, 52), _mm256_set1_epi64x(0x7ff));
+  const __m256i m = _mm256_or_si256(_mm256_and_si256(bits, _mm256_set1_epi64x((1LL << 52) - 1)), _mm256_set1_epi64x(1LL << 52));
+  const __m256i bias = _mm256_set1_epi64x(1075);  // the exponent of 2^52: the mantissa read as an integer
+  const __m256i magnitude = _mm256_or_si256(_mm256_sllv_epi64(m, _mm256_sub_epi64(e, bias)),
+                                            _mm256_srlv_epi64(m, _mm256_sub_epi64(bias, e)));
+  const __m256i negative = _mm256_sub_epi64(_mm256_setzero_si256(), _mm256_srli_epi64(bits, 63));  // all ones where x < 0
+  return FixedRow3(_mm256_sub_epi64(_mm256_xor_si256(magnitude, negative), negative));
+}
+#else
+inline FixedRow3 truncate_row(Row3 r) { return __builtin_convertvector(r, FixedRow3); }  // parallel/fixed_point.hpp
+#endif
 // acc[0 .. 4) += f, lane 3 included (f's is 0): one load, add and store, so a particle's
 // accumulators are four apart (State::partial)
 using Fixed4 = std::int64_t __attribute__((vector_size(32), aligned(8)));  // (stores alias int64_t only)
