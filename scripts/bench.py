@@ -251,7 +251,8 @@ def report(res, a):
         md += ["## Machine (one core, build/bin/rkmachine)", "",
                f"STREAM triad GB/s by working set: {bw}; peak {m['gflop_per_s_this_build']:.1f} GFLOP/s as this build "
                f"compiles ({m.get('build_vector_bits', 128)}-bit vectors), "
-               f"{m.get('gflop_per_s_avx512_fma', float('nan')):.1f} with AVX-512 FMA", ""]
+               + (f"{m['gflop_per_s_avx512_fma']:.1f} with AVX-512 FMA" if "gflop_per_s_avx512_fma" in m
+                  else "no AVX-512 on this core"), ""]
     if "paper" in res:
         md += ["## Taylor bar at the 2007 paper's resolution, 80 us, 1 rank", "",
                "| setting | particles | points | steps | prep (s) | solve (s) | total (s) | setup share | ns/point update | "
@@ -265,8 +266,9 @@ def report(res, a):
                    f"{s['ns_per_particle_step']:.0f} | "
                    f"{s['neighbours_per_point']:.1f} | {100 * s['plastic_fraction']:.0f} % | "
                    f"{s['bytes_per_update']:.0f} B, {s['flops_per_update']:.0f} | {s['limit_ns']:.0f} (memory "
-                   f"{s['memory_ns']:.0f} at {s['bandwidth_gb_per_s']:.0f} GB/s, compute {s['compute_ns']:.0f}; AVX-512 "
-                   f"{s.get('compute_ns_avx512', float('nan')):.0f}) | {100 * s['fraction_of_limit']:.0f} % | "
+                   f"{s['memory_ns']:.0f} at {s['bandwidth_gb_per_s']:.0f} GB/s, compute {s['compute_ns']:.0f}"
+                   + (f"; AVX-512 {s['compute_ns_avx512']:.0f}" if "compute_ns_avx512" in s else "") +
+                   f") | {100 * s['fraction_of_limit']:.0f} % | "
                    f"{s['r_f_mm']:.3f}, {s['L_f_mm']:.3f} | {100 * s['error']:.2f} % |"]
         md += ["", "Each phase of an update against its own limit (the tally split: the kinematics reads the neighbours' "
                "gradients and writes F, the force reads them again with P, the stress update the rest of the state):", "",
@@ -335,7 +337,9 @@ def report(res, a):
             if not r["setting"]:
                 default = r
             elif default:
-                md.append(f"- {default['case']}: the defaults {r['solve_s'] / default['solve_s']:.2f}x faster than "
+                ratio = r["solve_s"] / default["solve_s"]  # (a short run can be slower: said so, not "0.9x faster")
+                speed = f"{ratio:.2f}x faster than" if ratio >= 1 else f"{1 / ratio:.2f}x slower than"
+                md.append(f"- {default['case']}: the defaults {speed} "
                           f"{r['setting']} in this run ({default['steps']} steps against {r['steps']}), its die's work "
                           f"{100 * (default['work_j'] / r['work_j'] - 1):+.3f} % from that setting's.")
         md.append("")
