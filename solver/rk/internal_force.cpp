@@ -46,7 +46,7 @@ void add_point_forces(const Model& md, const std::vector<double>& P_all, std::ve
 #pragma GCC unroll 2  // (two terms an iteration: half the loop's own increments and branches a term)
     for (auto k = md.nbr_offsets[g]; k < k1; ++k) {
       const Row3 d = load_row3(&dN[3 * std::size_t(k)]);
-      const FixedRow3 f = truncate_row(column[0] * d[0] + column[1] * d[1] + column[2] * d[2]);
+      const FixedRow3 f = round_row(column[0] * d[0] + column[1] * d[1] + column[2] * d[2]);
       add_row(&partial[kForceStride * std::size_t(nbr[k])], f);
     }
   }

@@ -3,6 +3,7 @@
 // update; without, three scalars (a vector of four there takes two registers and is slower:
 // docs/decisions.md, "Vector registers in the hot loops").
 #pragma once
+#include <cmath>
 #include <cstdint>
 #ifdef __AVX__
 #include <immintrin.h>
@@ -15,25 +16,23 @@ using Row3 = double __attribute__((vector_size(32)));
 using FixedRow3 = long long __attribute__((vector_size(32)));
 inline Row3 make_row3(double a, double b, double c) { return Row3{a, b, c, 0.0}; }
 #if defined(__AVX512DQ__) && defined(__AVX512VL__)
-inline FixedRow3 truncate_row(Row3 r) { return __builtin_convertvector(r, FixedRow3); }  // parallel/fixed_point.hpp
-#elif defined(__AVX2__)
-// AVX2 has no packed double -> int64 conversion (the compiler converts lane by lane through the
-// scalar unit: 18 instructions); the same truncation from the bits, exact for |x| < 2^63 (the force
-// terms' bound, parallel/fixed_point.hpp): the mantissa with its leading 1 shifted by the exponent
-// (a shift by 64 or more gives 0: below 1 truncates to 0), then the sign. Unit test: bitwise the
-// scalar conversion's.
-inline FixedRow3 truncate_row(Row3 r) {
-  const __m256i bits = _mm256_castpd_si256(__m256d(r));
-  const __m256i e = _mm256_and_si256(_mm256_srli_epi64(bits, 52), _mm256_set1_epi64x(0x7ff));
-  const __m256i m = _mm256_or_si256(_mm256_and_si256(bits, _mm256_set1_epi64x((1LL << 52) - 1)), _mm256_set1_epi64x(1LL << 52));
-  const __m256i bias = _mm256_set1_epi64x(1075);  // the exponent of 2^52: the mantissa read as an integer
-  const __m256i magnitude = _mm256_or_si256(_mm256_sllv_epi64(m, _mm256_sub_epi64(e, bias)),
-                                            _mm256_srlv_epi64(m, _mm256_sub_epi64(bias, e)));
-  const __m256i negative = _mm256_sub_epi64(_mm256_setzero_si256(), _mm256_srli_epi64(bits, 63));  // all ones where x < 0
-  return FixedRow3(_mm256_sub_epi64(_mm256_xor_si256(magnitude, negative), negative));
-}
+// to the nearest integer, ties to even (the rounding mode's default): one instruction
+inline FixedRow3 round_row(Row3 r) { return FixedRow3(_mm256_cvtpd_epi64(__m256d(r))); }
 #else
-inline FixedRow3 truncate_row(Row3 r) { return __builtin_convertvector(r, FixedRow3); }  // parallel/fixed_point.hpp
+// Without AVX-512 there is no packed double -> int64 conversion (GCC converted lane by lane through the
+// scalar unit, 18 instructions); to the nearest integer, ties to even, in two halves from the bits of
+// kRound + y, which hold y rounded to an integer below 2^51: hi = x / 2^32 rounded, then the rest x - hi 2^32
+// (exact, at most 2^31) rounded, and the two joined in 64-bit integers. Exact for |x| < 2^63 (the force
+// terms' bound, parallel/fixed_point.hpp) whether or not the compiler fuses the multiplies and adds (each
+// product is exact). Unit test: std::llrint's, bit for bit.
+inline FixedRow3 round_row(Row3 x) {
+  using Bits = unsigned long long __attribute__((vector_size(32)));  // (wrapping arithmetic)
+  constexpr double kRound = 0x1.8p52;
+  constexpr unsigned long long kBits = 0x4338000000000000ULL;  // kRound's: the sum below carries them twice
+  const Row3 hi = x * 0x1p-32 + kRound;
+  const Row3 lo = (x - (hi - kRound) * 0x1p32) + kRound;
+  return (FixedRow3)((((Bits)hi << 32) + (Bits)lo) - ((kBits << 32) + kBits));
+}
 #endif
 // acc[0 .. 4) += f, lane 3 included (f's is 0): one load, add and store, so a particle's
 // accumulators are four apart (State::partial)
@@ -61,7 +60,7 @@ struct FixedRow3 {
   long long operator[](int i) const { return v[i]; }
 };
 inline Row3 make_row3(double a, double b, double c) { return Row3{{a, b, c}}; }
-inline FixedRow3 truncate_row(Row3 r) { return {{(long long)r.v[0], (long long)r.v[1], (long long)r.v[2]}}; }
+inline FixedRow3 round_row(Row3 r) { return {{std::llrint(r.v[0]), std::llrint(r.v[1]), std::llrint(r.v[2])}}; }
 inline void add_row(std::int64_t* acc, FixedRow3 f) {
   for (int i = 0; i < 3; ++i) acc[i] += f.v[i];
 }

@@ -8,9 +8,10 @@
 // - the contact's count (DieContact::count_terms) holds every term add_to can put on a particle,
 //   on the upsetting eighth (one die, three symmetry planes): one per obstacle for every slave
 //   whose row holds it, particle slaves spread over their rows N_J(X_I) included;
-// - the force loop's conversion of a row (rk/row3.hpp truncate_row: from the bits on AVX2, which has
-//   no packed conversion) is the scalar truncation's, bit for bit, for every magnitude a term can have
-//   (below 2^63), both signs, zeros, integers and halves, the binades' edges and subnormals;
+// - the force loop's conversion of a row to fixed point (rk/row3.hpp round_row: in two halves from the
+//   bits without AVX-512, which alone has a packed conversion) is std::llrint's, to the nearest with ties
+//   to even, bit for bit, for every magnitude a term can have (below 2^62), both signs, zeros, integers
+//   and halves, the binades' edges and subnormals;
 // - counts and offsets narrowed to 32 bits (shared/checked_int.hpp) pass when they fit and are one
 //   error naming what they count when they do not.
 #include <gtest/gtest.h>
@@ -50,23 +51,23 @@ TEST(FixedPoint, EveryTermAtTheBoundSumsWithinInt64) {
   }
 }
 
-TEST(FixedPoint, TheForceRowsConversionIsTheScalarTruncation) {
-  std::vector<double> xs = {0.0, -0.0, 0.5, 1.0, 1.5, 2.0, 3.999999, 1e-310, 4.9e-324, std::ldexp(1.0, 52),
-                            std::ldexp(1.0, 52) + 1, std::ldexp(1.0, 53) - 1, std::ldexp(1.0, 62),
-                            std::ldexp(1.0, 63) - 1024, std::ldexp(1.0, 52) - 0.5};
-  std::uint64_t seed = 88172645463325252ull;  // xorshift: mantissas over every binade from 2^-1080 to 2^62
+TEST(FixedPoint, TheForceRowsConversionRoundsToTheNearest) {
+  std::vector<double> xs = {0.0, -0.0, 0.5, 1.5, 2.5, 1.0, 2.0, 3.999999, 1e-310, 4.9e-324, std::ldexp(1.0, 31) + 0.5,
+                            std::ldexp(1.0, 32) - 0.5, std::ldexp(1.0, 32) + 0.5, std::ldexp(1.0, 52), std::ldexp(1.0, 52) + 1,
+                            std::ldexp(1.0, 53) - 1, std::ldexp(1.0, 61) * 3.999, std::ldexp(1.0, 62) - 1024, std::ldexp(1.0, 52) - 0.5};
+  std::uint64_t seed = 88172645463325252ull;  // xorshift: mantissas over every binade from 2^-1080 to 2^61
   for (int k = 0; k < 200000; ++k) {
     seed ^= seed << 13, seed ^= seed >> 7, seed ^= seed << 17;
-    xs.push_back(std::ldexp(1.0 + double(seed >> 12) * 0x1p-52, int(seed % 1143) - 1080));
+    xs.push_back(std::ldexp(1.0 + double(seed >> 12) * 0x1p-52, int(seed % 1142) - 1080));
   }
   int mismatches = 0;
   for (const double a : xs)
     for (const double x : {a, -a}) {
-      const rk::FixedRow3 row = rk::truncate_row(rk::make_row3(x, -0.5 * x, std::nextafter(x, 0.0)));
-      const rk::Fixed expected[3] = {rk::FixedScale::truncate(x), rk::FixedScale::truncate(-0.5 * x),
-                                     rk::FixedScale::truncate(std::nextafter(x, 0.0))};
+      const double lanes[3] = {x, -0.5 * x, std::nextafter(x, 0.0)};
+      const rk::FixedRow3 row = rk::round_row(rk::make_row3(lanes[0], lanes[1], lanes[2]));
       for (int i = 0; i < 3; ++i)
-        if (row[i] != expected[i] && ++mismatches <= 5) ADD_FAILURE() << "lane " << i << " of " << x << ": " << row[i] << " against " << expected[i];
+        if (row[i] != std::llrint(lanes[i]) && ++mismatches <= 5)
+          ADD_FAILURE() << "lane " << i << " of " << lanes[i] << ": " << row[i] << " against " << std::llrint(lanes[i]);
     }
   EXPECT_EQ(mismatches, 0);
 }
