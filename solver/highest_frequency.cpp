@@ -28,7 +28,7 @@ void inverse(const double F[9], double J, double Fi[9]) {
 }  // namespace
 
 HighestFrequency::HighestFrequency(const Model& md, const Comm& comm)
-    : exchange_(md, int(kForceStride)), headroom_(force_headroom(md, 1, 0, comm)), Kv_(3 * md.n), P_(9 * md.m), partial_(kForceStride * md.n) {
+    : exchange_(md, int(kForceStride)), headroom_(row_headroom(force_headroom(md, 1, 0, comm))), Kv_(3 * md.n), P_(9 * md.m), partial_(kForceStride * md.n) {
   double owned = 0;
   for (std::size_t I = 0; I < md.n; ++I) owned += md.owned[I];
   comm.sum(&owned, 1);

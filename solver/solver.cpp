@@ -549,7 +549,7 @@ void Simulation::rebind() {
   dies_->set_stick_rows(sticks, "the reference update");
   parts_ = std::make_unique<PartContact>(md_, scene_, comm_);
   exchange_.emplace(md_, int(kForceStride));
-  headroom_ = force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm_);
+  headroom_ = row_headroom(force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm_));
   force_terms_ = force_terms(md_, *dies_, *parts_, comm_);
   if (heat_) heat_ = std::make_unique<HeatTransfer>(md_, scene_, comm_);  // the capacities on the new reference
   results_ = collectively(
@@ -673,7 +673,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   exchange_.emplace(md_, int(kForceStride));
   if (scene_.time.subcycling > 1) start_subcycles();
   last_checkpoint_step_ = st_.step;
-  headroom_ = force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm);
+  headroom_ = row_headroom(force_headroom(md_, 1 + die_count, die_count + dies_->face_terms(), comm));
   force_terms_ = force_terms(md_, *dies_, *parts_, comm);
   v_old_.assign(st_.v.size(), 0.0);
   if (st_.reference_updates > 0) {  // a restart after updates: back onto the checkpoint's reference

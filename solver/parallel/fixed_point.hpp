@@ -5,7 +5,8 @@
 // The scale is set each step from a global bound B on the contributions, |x| <= B, and the headroom
 // h, the bits for the most contributions any particle receives (force_headroom: counted over all
 // ranks, so it does not depend on the partition either): |x * scale| < 2^(62-h); resolution
-// B * 2^(h-62) (2^-53 B at 500 contributions), the rounding of a double sum of the same terms. A
+// B * 2^(h-62) (2^-53 B at 500 contributions), the rounding of a double sum of the same terms; the
+// internal force's sums take h >= 12 (rk/row3.hpp kRowHeadroom: one add rounds their terms). A
 // step whose every term, at its bound, could sum past int64 takes more bits (step_headroom), so no
 // sum can overflow.
 #pragma once

@@ -16,6 +16,8 @@ int force_headroom(const Model& md, int per_column, int extra, const Comm& comm)
   return headroom_bits(std::int64_t(most) + extra);
 }
 
+int row_headroom(int headroom) { return std::max(headroom, kRowHeadroom); }
+
 ForceTerms force_terms(const Model& md, const DieContact& dies, const PartContact& parts, const Comm& comm) {
   std::vector<Fixed> internal(md.n, 0), contact(md.n, 0);
   for (auto k = md.nbr_offsets.front(); k < md.nbr_offsets.back(); ++k) ++internal[std::size_t(md.nbr[k])];

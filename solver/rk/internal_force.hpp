@@ -18,6 +18,8 @@ namespace rk {
 // most contributions any particle receives from the points of ALL ranks, `per_column` from each of
 // its columns, plus `extra`, so it does not depend on the partition. Collective; set-up only (allocates).
 int force_headroom(const Model& md, int per_column, int extra, const Comm& comm);
+// The headroom of the internal force's sums: force_headroom's, at least kRowHeadroom (rk/row3.hpp).
+int row_headroom(int headroom);
 // Every term summed into a particle's force (st.partial), the most over the particles of ALL ranks:
 // one from each point whose row holds it (the internal force), and the contact terms
 // (DieContact::count_terms, PartContact::count_terms), for step_headroom. Collective; set-up only (allocates).

@@ -11,6 +11,12 @@
 
 namespace rk {
 
+// The fixed-point headroom of the force loop's sums, at least: a term at its bound B < 2^e is below
+// 2^(62 - 12) = 2^50 after the scale (parallel/fixed_point.hpp), within round_row's exact range with a
+// factor 2 to spare for a bound's own rounding. The resolution B 2^(h - 62) is then 2^-50 B where fewer
+// than 2^12 terms meet at a particle (8x a double's rounding of B, and of the sums' 2^-53 B before).
+constexpr int kRowHeadroom = 12;
+
 #ifdef __AVX__
 using Row3 = double __attribute__((vector_size(32)));
 using FixedRow3 = long long __attribute__((vector_size(32)));
@@ -20,18 +26,13 @@ inline Row3 make_row3(double a, double b, double c) { return Row3{a, b, c, 0.0};
 inline FixedRow3 round_row(Row3 r) { return FixedRow3(_mm256_cvtpd_epi64(__m256d(r))); }
 #else
 // Without AVX-512 there is no packed double -> int64 conversion (GCC converted lane by lane through the
-// scalar unit, 18 instructions); to the nearest integer, ties to even, in two halves from the bits of
-// kRound + y, which hold y rounded to an integer below 2^51: hi = x / 2^32 rounded, then the rest x - hi 2^32
-// (exact, at most 2^31) rounded, and the two joined in 64-bit integers. Exact for |x| < 2^63 (the force
-// terms' bound, parallel/fixed_point.hpp) whether or not the compiler fuses the multiplies and adds (each
-// product is exact). Unit test: std::llrint's, bit for bit.
+// scalar unit, 18 instructions). Below 2^51, x + 1.5 2^52 lies in the binade of 2^52, whose doubles are
+// the integers: the add rounds x to the nearest (ties to even) and the sum's bits less 1.5 2^52's are
+// that integer. Two instructions; the force loop's scale keeps its terms below 2^50 (kRowHeadroom).
+// Unit test: std::llrint's, bit for bit.
 inline FixedRow3 round_row(Row3 x) {
-  using Bits = unsigned long long __attribute__((vector_size(32)));  // (wrapping arithmetic)
   constexpr double kRound = 0x1.8p52;
-  constexpr unsigned long long kBits = 0x4338000000000000ULL;  // kRound's: the sum below carries them twice
-  const Row3 hi = x * 0x1p-32 + kRound;
-  const Row3 lo = (x - (hi - kRound) * 0x1p32) + kRound;
-  return (FixedRow3)((((Bits)hi << 32) + (Bits)lo) - ((kBits << 32) + kBits));
+  return (FixedRow3)(x + kRound) - (FixedRow3)(Row3{} + kRound);
 }
 #endif
 // acc[0 .. 4) += f, lane 3 included (f's is 0): one load, add and store, so a particle's

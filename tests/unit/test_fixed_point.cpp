@@ -8,10 +8,11 @@
 // - the contact's count (DieContact::count_terms) holds every term add_to can put on a particle,
 //   on the upsetting eighth (one die, three symmetry planes): one per obstacle for every slave
 //   whose row holds it, particle slaves spread over their rows N_J(X_I) included;
-// - the force loop's conversion of a row to fixed point (rk/row3.hpp round_row: in two halves from the
-//   bits without AVX-512, which alone has a packed conversion) is std::llrint's, to the nearest with ties
-//   to even, bit for bit, for every magnitude a term can have (below 2^62), both signs, zeros, integers
-//   and halves, the binades' edges and subnormals;
+// - the force loop's conversion of a row to fixed point (rk/row3.hpp round_row: one add of 1.5 2^52
+//   without AVX-512, which alone has a packed conversion) is std::llrint's, to the nearest with ties to
+//   even, bit for bit, for every magnitude below 2^51 (its range), both signs, zeros, integers and
+//   halves, the binades' edges and subnormals; and at the force's headroom (kRowHeadroom at least) a
+//   term at its bound, of any binade, is below 2^50 after the scale, however few terms meet;
 // - counts and offsets narrowed to 32 bits (shared/checked_int.hpp) pass when they fit and are one
 //   error naming what they count when they do not.
 #include <gtest/gtest.h>
@@ -28,6 +29,7 @@
 #include "material_above.hpp"
 #include "model.hpp"
 #include "parallel/fixed_point.hpp"
+#include "rk/internal_force.hpp"
 #include "rk/row3.hpp"
 #include "scene.hpp"
 
@@ -53,12 +55,11 @@ TEST(FixedPoint, EveryTermAtTheBoundSumsWithinInt64) {
 
 TEST(FixedPoint, TheForceRowsConversionRoundsToTheNearest) {
   std::vector<double> xs = {0.0, -0.0, 0.5, 1.5, 2.5, 1.0, 2.0, 3.999999, 1e-310, 4.9e-324, std::ldexp(1.0, 31) + 0.5,
-                            std::ldexp(1.0, 32) - 0.5, std::ldexp(1.0, 32) + 0.5, std::ldexp(1.0, 52), std::ldexp(1.0, 52) + 1,
-                            std::ldexp(1.0, 53) - 1, std::ldexp(1.0, 61) * 3.999, std::ldexp(1.0, 62) - 1024, std::ldexp(1.0, 52) - 0.5};
-  std::uint64_t seed = 88172645463325252ull;  // xorshift: mantissas over every binade from 2^-1080 to 2^61
+                            std::ldexp(1.0, 50) + 0.5, std::ldexp(1.0, 50) - 0.5, std::ldexp(1.0, 51) - 0.5, std::ldexp(1.0, 51) - 1};
+  std::uint64_t seed = 88172645463325252ull;  // xorshift: mantissas over every binade from 2^-1080 to 2^50
   for (int k = 0; k < 200000; ++k) {
     seed ^= seed << 13, seed ^= seed >> 7, seed ^= seed << 17;
-    xs.push_back(std::ldexp(1.0 + double(seed >> 12) * 0x1p-52, int(seed % 1142) - 1080));
+    xs.push_back(std::ldexp(1.0 + double(seed >> 12) * 0x1p-52, int(seed % 1131) - 1080));
   }
   int mismatches = 0;
   for (const double a : xs)
@@ -70,6 +71,11 @@ TEST(FixedPoint, TheForceRowsConversionRoundsToTheNearest) {
           ADD_FAILURE() << "lane " << i << " of " << lanes[i] << ": " << row[i] << " against " << std::llrint(lanes[i]);
     }
   EXPECT_EQ(mismatches, 0);
+  for (const int counted : {0, 1, 9, rk::kRowHeadroom, 20})  // force_headroom's count, then the floor
+    for (const double bound : {1.0, 0.75, 1.0 - 1e-16, 3.1e5, std::ldexp(1.0, -30), 7e-300}) {
+      const rk::FixedScale scale = rk::FixedScale::for_bound(bound, rk::row_headroom(counted));
+      EXPECT_LT(std::abs(bound * scale.to_fixed), std::ldexp(1.0, 50)) << bound << " at " << counted << " counted bits";
+    }
 }
 
 // The worst sum of a step at the headroom step_headroom gives, every term at its bound and of one sign.
