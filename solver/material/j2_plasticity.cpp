@@ -318,7 +318,8 @@ void j2_update(const J2Params& p, J2Batch& b) {
 
   const Lane dgamma = return_map(p, q, b);
   const Lane scale = select(b.plastic, 1 - 3 * p.shear * dgamma / q, splat(1));
-  b.tau = (two_g * scale) * dev + identity_sym(p.bulk * vol);
+  // (component by component: a whole Sym assigned from a temporary is a call to memcpy, 2 % of the run)
+  set(b.tau, (two_g * scale) * dev + identity_sym(p.bulk * vol));
   b.psi = 0.5 * p.bulk * vol * vol + p.shear * scale * scale * norm2(dev);
   if (!any(b.plastic)) return;
 
@@ -335,7 +336,7 @@ void j2_update(const J2Params& p, J2Batch& b) {
   }
   Mat cof;  // F^{-1} = cof^T / det
   const Lane det = cofactor(b.F, cof);
-  b.cp_inv = select(b.plastic, (1 / (det * det)) * congruence(cof, be_new, true), b.cp_inv);
+  set(b.cp_inv, select(b.plastic, (1 / (det * det)) * congruence(cof, be_new, true), b.cp_inv));
 }
 
 J2Update j2_update(const Eigen::Matrix3d& F, const J2Params& p, double cp_inv[6], double& ep, double T, double dt) {

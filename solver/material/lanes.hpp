@@ -146,6 +146,13 @@ struct Mat {  // 3x3, row-major
   Lane v[9];
 };
 
+// to = from, component by component: GCC copies a whole Sym (192 bytes with AVX) from a temporary by a
+// call to memcpy, whose vzeroupper and call cost more than the six stores from the registers
+inline void set(Sym& to, const Sym& from) {
+#pragma GCC unroll 6  // (as a loop GCC makes it a memcpy again)
+  for (int i = 0; i < 6; ++i) to.v[i] = from.v[i];
+}
+
 inline Sym identity_sym(Lane diag) {
   const Lane z{};
   return {{diag, diag, diag, z, z, z}};
