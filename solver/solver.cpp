@@ -166,6 +166,7 @@ void Simulation::run() {
     time_step();                                // the step's one reduction over ranks
     check_health();                             // a state that is not physical stops every rank here
     const double dt = step_size(last);
+    timer_.stop(kTimeStep);                     // (with the health checks and a cycle's plan: not the force's)
     const double dt_avg = st_.step == 0 ? 0.5 * dt : 0.5 * (st_.dt_half + dt);
     if (heat_due(dt, last)) heat_transfer();    // conduction and surface heat from the last update to t^n
     internal_force();                           // f = sum_g w_g P_g grad_X N_I - f_contact, overlap summed
