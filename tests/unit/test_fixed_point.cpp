@@ -71,6 +71,9 @@ TEST(FixedPoint, TheForceRowsConversionRoundsToTheNearest) {
           ADD_FAILURE() << "lane " << i << " of " << lanes[i] << ": " << row[i] << " against " << std::llrint(lanes[i]);
     }
   EXPECT_EQ(mismatches, 0);
+}
+
+TEST(FixedPoint, TheForceScaleKeepsATermAtItsBoundWithinTheRowsRange) {
   for (const int counted : {0, 1, 9, rk::kRowHeadroom, 20})  // force_headroom's count, then the floor
     for (const double bound : {1.0, 0.75, 1.0 - 1e-16, 3.1e5, std::ldexp(1.0, -30), 7e-300}) {
       const rk::FixedScale scale = rk::FixedScale::for_bound(bound, rk::row_headroom(counted));
