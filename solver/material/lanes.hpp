@@ -79,6 +79,67 @@ inline Lane strided_lanes(const double* x) {
 #endif
 }
 
+// v[i] = component i of kLanes consecutive points of `stride` values at x (strided_lanes of each
+// component), and back: with 4 lanes the points' rows are read and written as vectors and transposed
+// in the registers (per component, a point's value goes through a lane insert or extract: 4 loads or
+// stores and a shuffle a component).
+#if defined(__AVX__) && !defined(__AVX512F__)
+inline void transpose4(__m256d& a, __m256d& b, __m256d& c, __m256d& d) {
+  const __m256d ab_lo = _mm256_unpacklo_pd(a, b), ab_hi = _mm256_unpackhi_pd(a, b);  // a0 b0 a2 b2, a1 b1 a3 b3
+  const __m256d cd_lo = _mm256_unpacklo_pd(c, d), cd_hi = _mm256_unpackhi_pd(c, d);
+  a = _mm256_permute2f128_pd(ab_lo, cd_lo, 0x20), b = _mm256_permute2f128_pd(ab_hi, cd_hi, 0x20);
+  c = _mm256_permute2f128_pd(ab_lo, cd_lo, 0x31), d = _mm256_permute2f128_pd(ab_hi, cd_hi, 0x31);
+}
+#endif
+template <int stride>
+inline void strided_to_lanes(const double* x, Lane* v) {
+#if defined(__AVX__) && !defined(__AVX512F__)
+  static_assert(stride % 4 == 1 || stride % 4 == 2);
+  for (int j = 0; j + 4 <= stride; j += 4) {
+    __m256d a = _mm256_loadu_pd(x + j), b = _mm256_loadu_pd(x + stride + j);
+    __m256d c = _mm256_loadu_pd(x + 2 * stride + j), d = _mm256_loadu_pd(x + 3 * stride + j);
+    transpose4(a, b, c, d);
+    v[j] = (Lane)a, v[j + 1] = (Lane)b, v[j + 2] = (Lane)c, v[j + 3] = (Lane)d;
+  }
+  constexpr int last = stride - stride % 4;
+  if constexpr (stride % 4 == 1) {
+    v[last] = strided_lanes<stride>(x + last);
+  } else {  // the last two components: a pair a point
+    const __m256d even = _mm256_loadu2_m128d(x + 2 * stride + last, x + last);  // points 0 and 2
+    const __m256d odd = _mm256_loadu2_m128d(x + 3 * stride + last, x + stride + last);
+    v[last] = (Lane)_mm256_unpacklo_pd(even, odd), v[last + 1] = (Lane)_mm256_unpackhi_pd(even, odd);
+  }
+#else
+  for (int i = 0; i < stride; ++i) v[i] = strided_lanes<stride>(x + i);
+#endif
+}
+template <int stride>
+inline void lanes_to_strided(const Lane* v, double* x) {
+#if defined(__AVX__) && !defined(__AVX512F__)
+  static_assert(stride % 4 == 1 || stride % 4 == 2);
+  for (int j = 0; j + 4 <= stride; j += 4) {
+    __m256d a = (__m256d)v[j], b = (__m256d)v[j + 1], c = (__m256d)v[j + 2], d = (__m256d)v[j + 3];
+    transpose4(a, b, c, d);
+    _mm256_storeu_pd(x + j, a), _mm256_storeu_pd(x + stride + j, b);
+    _mm256_storeu_pd(x + 2 * stride + j, c), _mm256_storeu_pd(x + 3 * stride + j, d);
+  }
+  constexpr int last = stride - stride % 4;
+  if constexpr (stride % 4 == 1) {
+    for (int l = 0; l < kLanes; ++l) x[l * stride + last] = v[last][l];
+  } else {
+    const __m256d even = _mm256_unpacklo_pd((__m256d)v[last], (__m256d)v[last + 1]);  // points 0 and 2
+    const __m256d odd = _mm256_unpackhi_pd((__m256d)v[last], (__m256d)v[last + 1]);
+    _mm256_storeu2_m128d(x + 2 * stride + last, x + last, even);
+    _mm256_storeu2_m128d(x + 3 * stride + last, x + stride + last, odd);
+  }
+#else
+  for (int l = 0; l < kLanes; ++l)
+    for (int i = 0; i < stride; ++i) x[l * stride + i] = v[i][l];
+#endif
+}
+// x[0 .. kLanes) = v: one vector store
+inline void store_lanes(double* x, Lane v) { __builtin_memcpy(x, &v, sizeof v); }
+
 // r^(1/3) for r near 1 (the F-bar ratio Jbar/J): two Newton steps from 1 + e/3 - e^2/9, e = r - 1,
 // reach round-off for |e| <= 0.1 (initial error 5e^3/81, squared by each step); lanes farther out
 // take std::cbrt. Replaces a libm call per point (docs/decisions.md, "Speed").

@@ -31,7 +31,7 @@ Batch batch_of(const std::size_t* pts, std::size_t count, std::size_t k) {
 // F of the batch's points across the lanes (the rest of the lanes the identity).
 void lanes_of_F(const State& st, const Batch& bt, Mat& F) {
   if (bt.whole) {
-    for (int i = 0; i < 9; ++i) F.v[i] = strided_lanes<9>(&st.F[9 * bt.point[0] + std::size_t(i)]);
+    strided_to_lanes<9>(&st.F[9 * bt.point[0]], F.v);
     return;
   }
   for (int l = 0; l < kLanes; ++l)
@@ -70,7 +70,7 @@ void load(const Model& md, const State& st, std::size_t c, const Batch& bt, cons
   if (md.thermal_strain())
     for (int l = 0; l < n; ++l) stretch[l] = md.thermal_stretch(st.temperature[bt.point[l]]), ratio[l] /= stretch[l];
   if (bt.whole && st.temperature.empty() && st.plastic_rate.empty()) {
-    for (int i = 0; i < 6; ++i) b.cp_inv.v[i] = strided_lanes<6>(&st.cp_inv[6 * g + std::size_t(i)]);
+    strided_to_lanes<6>(&st.cp_inv[6 * g], b.cp_inv.v);
     b.ep = load_lanes(&st.ep[g]);
   } else {
     for (int l = 0; l < kLanes; ++l) {
@@ -125,6 +125,11 @@ void first_piola(const Model& md, State& st, const Batch& bt, double pc, const M
   else
     for (int l = 0; l < n; ++l) w[l] = md.weight[bt.point[l]], dN_max[l] = md.dN_max[bt.point[l]];
   const Lane bound = w * sqrt(norm2) * dN_max;
+  if (bt.whole) {
+    lanes_to_strided<9>(P, &st.P[9 * g]);
+    store_lanes(&st.force_bound[g], bound);
+    return;
+  }
   for (int l = 0; l < n; ++l) {
     for (int i = 0; i < 9; ++i) st.P[9 * bt.point[l] + i] = P[i][l];
     st.force_bound[bt.point[l]] = bound[l];
@@ -219,38 +224,54 @@ StressHealth update_points(const Model& md, State& st, const PressureBound& boun
     if (!cell_ok) continue;
     double wp = 0, wJ = 0, w = 0, ep_max = 0;
     double increment[kMaxCellPoints];  // the points' plastic strain increments (for the damage)
+    Lane stretch[std::size(batch)];
+    // every batch loaded before the first update: their F-bar ratios' chains of divisions overlap
+    for (std::size_t k = 0; k * kLanes < npts; ++k) {
+      const Batch bt = batch_of(pts, npts, k);
+      lanes_of_F(st, bt, F_batch[k]);
+      if (md.green_strain) {
+        const Lane e2 = green_strain2(F_batch[k]);  // (the rest of the lanes the identity: 0)
+        for (int l = 0; l < bt.n; ++l) health.green_strain2 = std::max(health.green_strain2, e2[l]);
+      }
+      load(md, st, c, bt, F_batch[k], batch[k], stretch[k]);
+    }
     for (std::size_t k = 0; k * kLanes < npts; ++k) {
       const Batch bt = batch_of(pts, npts, k);
       const int n = bt.n;
-      Mat& F = F_batch[k];
       J2Batch& b = batch[k];
-      lanes_of_F(st, bt, F);
-      if (md.green_strain) {
-        const Lane e2 = green_strain2(F);  // (the rest of the lanes the identity: 0)
-        for (int l = 0; l < n; ++l) health.green_strain2 = std::max(health.green_strain2, e2[l]);
-      }
-      Lane stretch;
-      load(md, st, c, bt, F, b, stretch);
       j2_update(law, b);
       Lane weight{};
       if (bt.whole) weight = load_lanes(&md.weight[bt.point[0]]);
       else
         for (int l = 0; l < n; ++l) weight[l] = md.weight[bt.point[l]];
       const Lane weighted_mean = weight * (b.tau.v[0] + b.tau.v[1] + b.tau.v[2]) / 3;  // w tr(tau) / 3, for the cell's pressure
+      // a whole batch, where nothing below needs the point's last state (its plastic rate, the damage's
+      // increment, the thermal strain's work), is stored as vectors; C_p^-1 only where it changed
+      const bool as_vectors = bt.whole && st.plastic_rate.empty() && st.damage.empty() && st.stretch_last.empty();
+      if (as_vectors) {
+        const std::size_t g = bt.point[0];
+        lanes_to_strided<6>(b.tau.v, &st.tau[6 * g]);
+        if (any(b.plastic)) lanes_to_strided<6>(b.cp_inv.v, &st.cp_inv[6 * g]);
+        store_lanes(&st.ep[g], b.ep);
+        store_lanes(&st.psi[g], b.psi);
+        store_lanes(&st.wp[g], load_lanes(&st.wp[g]) + b.dissipation);
+      }
       for (int l = 0; l < n; ++l) {
         const std::size_t p = bt.point[l];
         double* t = &st.tau[6 * p];
-        const double trace_before = t[0] + t[1] + t[2];
-        for (int i = 0; i < 6; ++i) t[i] = b.tau.v[i][l], st.cp_inv[6 * p + i] = b.cp_inv.v[i][l];
-        if (!st.plastic_rate.empty()) st.plastic_rate[p] = b.dt > 0 ? (b.ep[l] - st.ep[p]) / b.dt : 0.0;
-        if (!st.damage.empty()) increment[k * kLanes + std::size_t(l)] = b.ep[l] - st.ep[p];
-        st.ep[p] = b.ep[l];
-        st.psi[p] = b.psi[l];
-        st.wp[p] += b.dissipation[l];
+        const double trace_before = as_vectors ? 0.0 : t[0] + t[1] + t[2];
+        if (!as_vectors) {
+          for (int i = 0; i < 6; ++i) t[i] = b.tau.v[i][l], st.cp_inv[6 * p + i] = b.cp_inv.v[i][l];
+          if (!st.plastic_rate.empty()) st.plastic_rate[p] = b.dt > 0 ? (b.ep[l] - st.ep[p]) / b.dt : 0.0;
+          if (!st.damage.empty()) increment[k * kLanes + std::size_t(l)] = b.ep[l] - st.ep[p];
+          st.ep[p] = b.ep[l];
+          st.psi[p] = b.psi[l];
+          st.wp[p] += b.dissipation[l];
+        }
         if (!st.stretch_last.empty()) {  // the stress's work on the thermal strain over the step (trapezoid)
           if (st.stretch_last[p] > 0)
-            thermal_work += md.weight[p] * 0.5 * (trace_before + t[0] + t[1] + t[2]) * std::log(stretch[l] / st.stretch_last[p]);
-          st.stretch_last[p] = stretch[l];
+            thermal_work += md.weight[p] * 0.5 * (trace_before + t[0] + t[1] + t[2]) * std::log(stretch[k][l] / st.stretch_last[p]);
+          st.stretch_last[p] = stretch[k][l];
         }
         // the plastic work's heat, at once at the point (spread by conduction at the next thermal update)
         if (!st.temperature.empty() && b.dissipation[l] != 0) {
