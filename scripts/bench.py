@@ -120,6 +120,18 @@ PAPER_SETTINGS = [("default (Gauss 2, F-bar, multi-rate steps)", []),
                  ("default, step from the highest frequency", ["time.stable_step=frequency"]),
                  ("Gauss 1, step from the highest frequency", ["discretization.gauss_order=1", "time.stable_step=frequency"])]
 TAYLOR_REF = {"r_f_mm": 7.22, "L_f_mm": 21.45}  # converged FE (docs/studies.md)
+# Other meshfree codes' wall time per particle step on one CPU core, from the logs and baselines their
+# repositories hold (their machines, not run here): (code, case, us per particle step, how it reads)
+ANCHORS = [
+    ("LAMMPS MACHDYN TLSPH", "aluminum strip pull, 2D, 400 particles, 11 neighbours, Johnson-Cook", 1.70,
+     "1.359 s for 2000 steps (examples/PACKAGES/machdyn/aluminum_strip_pull/log.9Oct20.aluminum_strip_pull.g++.1)"),
+    ("LAMMPS MACHDYN TLSPH", "two rubber rings' impact, 3D, 960 particles, 19.5 neighbours, contact", 3.50,
+     "16.82 s for 5000 steps (examples/PACKAGES/machdyn/rubber_rings_3d/log.9Oct20.rubber_rings_3d.g++.1)"),
+    ("aperi-mech, reproducing kernel", "Taylor impact, 7 x 7 x 21 hexahedra in tetrahedra, 1408 nodes", 1.68,
+     "2.367 ms per increment, setup apart (dev/bench/gtest/AperiAzureGPU2/data.js, 2025-04-08, CPU entry)"),
+    ("aperi-mech, reproducing kernel", "the same at 28 x 28 x 84, 71 485 nodes", 2.13,
+     "152.1 ms per increment (the same file and entry)"),
+]
 
 
 def paper_settings(a, machine):
@@ -283,6 +295,12 @@ def report(res, a):
         md += ["", "Error: |r_f/7.22 - 1| + |L_f/21.45 - 1| (converged FE). Targets: under 300 ns per update at about 30 "
                f"neighbours; 80 us in under 2 s with setup: {', '.join(under)} (the 2007 paper: {PAPER_SECONDS:.0f} s, "
                f"{PAPER_SECONDS / d['total_s']:.0f}x the default's time); setup under 20 %.", ""]
+        one = [s for s in res["paper"] if s["setting"] == "default at one rate"]
+        at_one = f", {one[0]['ns_per_particle_step'] / 1000:.2f} us at one rate" if one else ""
+        md += ["Other meshfree codes per particle step on one CPU core, from their repositories' own logs (their "
+               f"machines; rkforge's default here: {d['ns_per_particle_step'] / 1000:.2f} us{at_one}):", ""]
+        md += [f"- {code}, {case}: {us:.2f} us ({us * 1000 / d['ns_per_particle_step']:.1f}x the default's), {how}"
+               for code, case, us, how in ANCHORS] + [""]
     if "calculix" in res:
         c = res["calculix"]
         line = f"{c['code']}, {c['elements']} elements: {c['wall_s']:.1f} s, r_f {c['r_f_mm']:.3f} mm, L_f {c['L_f_mm']:.3f} mm"

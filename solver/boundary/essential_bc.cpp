@@ -141,6 +141,9 @@ void EssentialBcs::apply(const Model& md, State& st, double t_next, double dt, d
 
 void EssentialBcs::apply_nodal(const Model& md, State& st, double t_next, double dt, double dt_avg,
                                const std::vector<double>& v_old) {
+  // the work summed in a register, in the same order (through st it is a load and a store a term, each
+  // waiting on the last: v's stores may alias it)
+  double work = st.external_work;
   for (std::size_t I = 0; I < md.n; ++I) {
     const auto k0 = md.constraint_offsets[I], k1 = md.constraint_offsets[I + 1];
     if (k0 == k1) continue;
@@ -158,9 +161,9 @@ void EssentialBcs::apply_nodal(const Model& md, State& st, double t_next, double
         for (int i = 0; i < 3; ++i) reaction_[3 * f + i] += md.mass[I] * delta * e[i] / dt_avg;
     }
     if (dt > 0 && md.owned[I])
-      for (int i = 0; i < 3; ++i)
-        st.external_work += md.mass[I] * (v[i] - before[i]) * 0.5 * (v_old[3 * I + i] + v[i]);
+      for (int i = 0; i < 3; ++i) work += md.mass[I] * (v[i] - before[i]) * 0.5 * (v_old[3 * I + i] + v[i]);
   }
+  st.external_work = work;
 }
 
 void EssentialBcs::apply_exact(const Model& md, State& st, double t_next, double dt, double dt_avg,
