@@ -261,7 +261,7 @@ J2Params::AtTemperature J2Params::at_temperature(double T) const {
   if (hansel_spittel) {
     const double c = T - 273.15;  // the databases' Celsius
     // T^m9 at 1 C at the least: the laws are fitted far above freezing, and ln would fail at 0 C
-    at.log_a = std::log(hs_a) + hs_m1 * c + (hs_m9 != 0 ? hs_m9 * std::log(std::max(c, 1.0)) : 0.0);
+    at.log_a = hs_log_a + hs_m1 * c + (hs_m9 != 0 ? hs_m9 * std::log(std::max(c, 1.0)) : 0.0);
     at.strain_t = hs_m5 * c, at.rate_exponent = hs_m3 + hs_m8 * c;
   }
   return at;
