@@ -81,8 +81,8 @@ inline Lane strided_lanes(const double* x) {
 
 // v[i] = component i of kLanes consecutive points of `stride` values at x (strided_lanes of each
 // component), and back: with 4 lanes the points' rows are read and written as vectors and transposed
-// in the registers (per component, a point's value goes through a lane insert or extract: 4 loads or
-// stores and a shuffle a component).
+// 4x4 in the registers, instead of a lane insert or extract for every value; with 8 or 2 lanes
+// component by component.
 #if defined(__AVX__) && !defined(__AVX512F__)
 inline void transpose4(__m256d& a, __m256d& b, __m256d& c, __m256d& d) {
   const __m256d ab_lo = _mm256_unpacklo_pd(a, b), ab_hi = _mm256_unpackhi_pd(a, b);  // a0 b0 a2 b2, a1 b1 a3 b3
