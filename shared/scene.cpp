@@ -920,6 +920,15 @@ std::vector<std::string> temperature_warnings(const Scene& s) {
   return out;
 }
 
+std::vector<std::string> discretization_warnings(const Scene& s) {
+  if (s.discretization.integration != "gauss" || s.discretization.gauss_order != 1) return {};
+  return {"discretization.gauss_order = 1: one integration point per cell leaves the cells' hourglass modes "
+          "unresisted; measured (2026-12-06), the frictionless upsetting at 1.25 mm reads its die force 16 % low at "
+          "50 % reduction and its diameter 19 % large (gauss_order 2: 0.5 % and 0.1 %), and the Taylor bar's "
+          "footprint radius jumps between +0.7 and +2.3 % as the spacing falls from 0.9 to 0.3 mm; gauss_order 2 "
+          "(the default) for forces and shapes"};
+}
+
 double DieMotion::Crank::position(double theta) const {
   const double lambda = radius / rod, s = std::sin(theta);
   return radius * (1 - std::cos(theta)) + rod * (1 - std::sqrt(1 - lambda * lambda * s * s));

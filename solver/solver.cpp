@@ -722,8 +722,9 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     std::printf("rksolve: a stage from %s at t = %g s: %d dies going on, %d new%s\n", stage_.from.c_str(), t0_, kept,
                 int(stage_.continues.size()) - kept, dwell_ ? "; a dwell: the temperature alone, at the thermal step" : "");
   }
-  if (comm.rank() == 0)  // suspicious temperatures before the run, not only in its report
-    for (const std::string& w : temperature_warnings(scene_)) std::fprintf(stderr, "rksolve: warning: %s\n", w.c_str());
+  if (comm.rank() == 0)  // suspicious temperatures and discretizations before the run, not only in its report
+    for (const auto& warnings : {temperature_warnings(scene_), discretization_warnings(scene_)})
+      for (const std::string& w : warnings) std::fprintf(stderr, "rksolve: warning: %s\n", w.c_str());
   g_interrupted = 0;
   std::signal(SIGINT, request_stop);
   std::signal(SIGTERM, request_stop);

@@ -190,6 +190,17 @@ TEST(Scene, ACelsiusLookingTemperatureIsWarnedByItsKey) {
   EXPECT_NE(w[0].find("dies 'top'.temperature = 250 K is -23 C"), std::string::npos) << w[0];
 }
 
+TEST(Scene, OneGaussPointPerCellIsWarnedByItsKey) {
+  EXPECT_TRUE(rk::discretization_warnings(rk::load_scene(write_scene(kGood))).empty());  // gauss_order 2
+  const auto one = replace(kGood, "  spacing: 1.0e-3\n", "  spacing: 1.0e-3\n  gauss_order: 1\n");
+  const auto w = rk::discretization_warnings(rk::load_scene(write_scene(one)));
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("discretization.gauss_order = 1"), std::string::npos) << w[0];
+  // nodal integration has no Gauss points: the order is not used, so nothing to warn of
+  const auto nodal = replace(one, "  gauss_order: 1\n", "  gauss_order: 1\n  integration: nodal\n");
+  EXPECT_TRUE(rk::discretization_warnings(rk::load_scene(write_scene(nodal))).empty());
+}
+
 TEST(Scene, ThermalKeysNeedTheirPhysics) {
   EXPECT_NE(error_of(replace(kGood, "  yield_stress: 400.0e6\n", "  yield_stress: 400.0e6\n  conductivity: 45\n"))
                 .find("'material.conductivity' needs 'material.specific_heat'"),
