@@ -344,9 +344,10 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<Override>&
 // 2 % off the density table at the initial temperature. Each names its key.
 std::vector<std::string> temperature_warnings(const Scene& scene);
 
-// Suspicious but legal discretizations: one Gauss point per cell (under-integrated: measured errors in
-// the text). Printed by rkprep and rksolve, kept in solve.json's warnings.
-std::vector<std::string> discretization_warnings(const Scene& scene);
+// Legal settings that cost accuracy where a user may not expect it, each with what was measured: one
+// Gauss point per cell (under-integrated), the step from the highest frequency with a penalty contact
+// (softer springs). Printed by rkprep and rksolve, kept in solve.json's warnings.
+std::vector<std::string> accuracy_warnings(const Scene& scene);
 
 // Basis requirements: the smallest dilation with which the moment matrix stays regular.
 double minimum_dilation(const std::string& basis);

@@ -26,6 +26,7 @@ plots = {"convergence": ["convergence.png"], "tradeoffs": ["pareto.png"], "scali
 EXPECTED = {
     "convergence": {"taylor_h1.6": "completed", "taylor_h1.2": "completed", "taylor_nodal_h1.6": "completed",
                     "taylor_nodal_h1.2": "completed", "taylor_frequency_h1.6": "completed", "taylor_frequency_h1.2": "completed",
+                    "taylor_gauss1_h1.6": "completed", "taylor_gauss1_h1.2": "completed",
                     "upsetting_h3.0": "completed", "upsetting_h2.5": "completed"},
     "tradeoffs": {"taylor_default": "completed", "taylor_cfl_0.25": "completed", "upsetting_penalty0.25": "completed"},
     "stability": {"taylor_jitter_0.4": "completed", "taylor_cfl_2.0": "completed"},

@@ -191,14 +191,22 @@ TEST(Scene, ACelsiusLookingTemperatureIsWarnedByItsKey) {
 }
 
 TEST(Scene, OneGaussPointPerCellIsWarnedByItsKey) {
-  EXPECT_TRUE(rk::discretization_warnings(rk::load_scene(write_scene(kGood))).empty());  // gauss_order 2
+  EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(kGood))).empty());  // gauss_order 2
   const auto one = replace(kGood, "  spacing: 1.0e-3\n", "  spacing: 1.0e-3\n  gauss_order: 1\n");
-  const auto w = rk::discretization_warnings(rk::load_scene(write_scene(one)));
+  const auto w = rk::accuracy_warnings(rk::load_scene(write_scene(one)));
   ASSERT_EQ(w.size(), 1u);
   EXPECT_NE(w[0].find("discretization.gauss_order = 1"), std::string::npos) << w[0];
   // nodal integration has no Gauss points: the order is not used, so nothing to warn of
   const auto nodal = replace(one, "  gauss_order: 1\n", "  gauss_order: 1\n  integration: nodal\n");
-  EXPECT_TRUE(rk::discretization_warnings(rk::load_scene(write_scene(nodal))).empty());
+  EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(nodal))).empty());
+}
+
+TEST(Scene, TheFrequencysStepWithAPenaltyContactIsWarnedByItsKey) {
+  const auto frequency = replace(kGood, "  end: 1.0e-6\n", "  end: 1.0e-6\n  stable_step: frequency\n");
+  EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(frequency))).empty());  // no contact: nothing softens
+  const auto w = rk::accuracy_warnings(rk::load_scene(write_scene(frequency + "contact:\n  self: true\n")));
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("time.stable_step = frequency"), std::string::npos) << w[0];
 }
 
 TEST(Scene, ThermalKeysNeedTheirPhysics) {
