@@ -201,6 +201,17 @@ TEST(Scene, OneGaussPointPerCellIsWarnedByItsKey) {
   EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(nodal))).empty());
 }
 
+TEST(Scene, APlasticPartWithoutFbarIsWarnedByItsKey) {
+  const auto none = replace(kGood, "  spacing: 1.0e-3\n", "  spacing: 1.0e-3\n  volumetric: none\n");
+  const auto w = rk::accuracy_warnings(rk::load_scene(write_scene(none)));  // j2_linear: it locks
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("discretization.volumetric = none"), std::string::npos) << w[0];
+  // an elastic part has no isochoric flow to lock, and one point per cell has no F-bar to leave out
+  EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(replace(replace(none, "j2_linear", "elastic"), "  yield_stress: 400.0e6\n", "")))).empty());
+  EXPECT_EQ(rk::accuracy_warnings(rk::load_scene(write_scene(
+                replace(none, "  volumetric: none\n", "  volumetric: none\n  gauss_order: 1\n")))).size(), 1u);  // Gauss 1's only
+}
+
 TEST(Scene, TheFrequencysStepWithAPenaltyContactIsWarnedByItsKey) {
   const auto frequency = replace(kGood, "  end: 1.0e-6\n", "  end: 1.0e-6\n  stable_step: frequency\n");
   EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(frequency))).empty());  // no contact: nothing softens
