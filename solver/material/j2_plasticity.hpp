@@ -43,7 +43,9 @@ struct J2Params {
   std::shared_ptr<const FlowTable> table;
   bool rate_dependent() const { return johnson_cook || hansel_spittel || table; }
   static J2Params from(double E, double nu, double yield0, double H, bool plastic) {
-    return {E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu)), yield0, H, plastic};
+    J2Params p;
+    p.bulk = E / (3 * (1 - 2 * nu)), p.shear = E / (2 * (1 + nu)), p.yield0 = yield0, p.hardening = H, p.plastic = plastic;
+    return p;
   }
   static J2Params power(double E, double nu, double K, double eps0, double n) {
     J2Params p = from(E, nu, K * std::pow(eps0, n), 0, true);

@@ -340,7 +340,8 @@ TEST(DieContact, ADieSlidingOverMaterialAtRestDragsItAlong) {
   const double mu = 0.12, s = u.scene.penalty_scale_at_cfl(), dt = Lifted::dt;
   rk::Scene scene = with_friction(u, mu);
   const double speed = slipping_speed(lifted, mu);  // slip everywhere, as above
-  scene.dies[0].motion = rk::DieMotion{{0, 1, 0}, speed, {}};  // the die moves along +y over its own face's plane
+  scene.dies[0].motion = rk::DieMotion{};  // the die moves along +y over its own face's plane
+  scene.dies[0].motion.direction = {0, 1, 0}, scene.dies[0].motion.speed = speed;
   const double rest[3] = {0, 0, 0};
   const rk::State st = Lifted::state(u.md, rest);
   rk::DieContact contact(u.md, scene, u.dies);

@@ -287,9 +287,10 @@ TEST(Scene, TheShippedMaterialsLoad) {
                                       std::string("  library: ") + RK_SOURCE_DIR + "/geometry/materials/" + name + ".yaml\n");
     const rk::Scene s = rk::load_scene(write_scene(scene));
     EXPECT_TRUE(s.material.thermal() && s.material.conducting()) << name;
-    if (std::string(name) == "c45_hot")  // the Freiberg form's offsets, EN 1993-1-2's c(T) with its peak at 735 C
+    if (std::string(name) == "c45_hot") {  // the Freiberg form's offsets, EN 1993-1-2's c(T) with its peak at 735 C
       EXPECT_TRUE(s.material.strain_offset == 0.1 && s.material.strain_rate_offset == 0.1 &&
                   s.material.specific_heat_table.at(1008.15) == 5000 && s.material.conductivity_at(1423.15) == 27.3);
+    }
   }
 }
 

@@ -122,8 +122,9 @@ TEST(StressUpdate, OnlyTheListedCellsOfOnePointAreUpdated) {
       if (is_due) EXPECT_EQ(listed.tau[6 * g + i], all.tau[6 * g + i]) << "point " << g;
       else EXPECT_EQ(listed.tau[6 * g + i], -1.0) << "point " << g << " is not due";
     }
-    if (is_due)
+    if (is_due) {
       for (int i = 0; i < 9; ++i) EXPECT_EQ(listed.P[9 * g + i], all.P[9 * g + i]) << "point " << g;
+    }
     plastic += all.ep[g] > 0;
     EXPECT_EQ(listed.ep[g], is_due ? all.ep[g] : 0.0) << "point " << g;
   }
