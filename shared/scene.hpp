@@ -346,7 +346,8 @@ std::vector<std::string> temperature_warnings(const Scene& scene);
 
 // Legal settings that cost accuracy where a user may not expect it, each with what was measured: one
 // Gauss point per cell (under-integrated), a plastic part without F-bar (locked), the step from the
-// highest frequency with a penalty contact (softer springs). Printed by rkprep and rksolve, kept in solve.json's warnings.
+// highest frequency with a penalty contact (softer springs). Printed by rkprep and rksolve, kept in
+// solve.json's warnings.
 std::vector<std::string> accuracy_warnings(const Scene& scene);
 
 // Basis requirements: the smallest dilation with which the moment matrix stays regular.

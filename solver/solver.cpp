@@ -722,7 +722,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     std::printf("rksolve: a stage from %s at t = %g s: %d dies going on, %d new%s\n", stage_.from.c_str(), t0_, kept,
                 int(stage_.continues.size()) - kept, dwell_ ? "; a dwell: the temperature alone, at the thermal step" : "");
   }
-  if (comm.rank() == 0)  // suspicious temperatures and discretizations before the run, not only in its report
+  if (comm.rank() == 0)  // suspicious temperatures and costly settings before the run, not only in its report
     for (const auto& warnings : {temperature_warnings(scene_), accuracy_warnings(scene_)})
       for (const std::string& w : warnings) std::fprintf(stderr, "rksolve: warning: %s\n", w.c_str());
   g_interrupted = 0;

@@ -95,7 +95,7 @@ def convergence():
     # 10 minutes of wall time, so RESUME=1 continues one that was stopped
     # the third series is the default discretization on the stable step from the highest frequency
     # (time.stable_step), 2.7x fewer steps: what makes the finest level affordable on a small machine;
-    # the fourth one Gauss point per cell (the fast setting: 8x fewer point updates than the default)
+    # the fourth one Gauss point per cell (the fast setting: 8x fewer points than the default)
     cases = [Case(f"taylor{tag}_h{h}", **taylor(h, end, *solve, *(["output.checkpoint_minutes=10"] if h < 0.4 else []),
                                                  prep=prep, ranks=2 if h < 0.4 else 1), h=h, series=series)
              for series, tag, prep, solve in (("gauss", "", [], []), ("nodal", "_nodal", ["discretization.integration=nodal"], []),
