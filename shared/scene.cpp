@@ -942,6 +942,12 @@ std::vector<std::string> accuracy_warnings(const Scene& s) {
   return out;
 }
 
+std::vector<std::string> scene_warnings(const Scene& s) {
+  std::vector<std::string> out = temperature_warnings(s);
+  for (std::string& w : accuracy_warnings(s)) out.push_back(std::move(w));
+  return out;
+}
+
 double DieMotion::Crank::position(double theta) const {
   const double lambda = radius / rod, s = std::sin(theta);
   return radius * (1 - std::cos(theta)) + rod * (1 - std::sqrt(1 - lambda * lambda * s * s));

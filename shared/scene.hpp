@@ -350,6 +350,9 @@ std::vector<std::string> temperature_warnings(const Scene& scene);
 // solve.json's warnings.
 std::vector<std::string> accuracy_warnings(const Scene& scene);
 
+// Every warning the scene alone gives (the two lists above), as rksolve prints and reports them.
+std::vector<std::string> scene_warnings(const Scene& scene);
+
 // Basis requirements: the smallest dilation with which the moment matrix stays regular.
 double minimum_dilation(const std::string& basis);
 

@@ -723,8 +723,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
                 int(stage_.continues.size()) - kept, dwell_ ? "; a dwell: the temperature alone, at the thermal step" : "");
   }
   if (comm.rank() == 0)  // suspicious temperatures and costly settings before the run, not only in its report
-    for (const auto& warnings : {temperature_warnings(scene_), accuracy_warnings(scene_)})
-      for (const std::string& w : warnings) std::fprintf(stderr, "rksolve: warning: %s\n", w.c_str());
+    for (const std::string& w : scene_warnings(scene_)) std::fprintf(stderr, "rksolve: warning: %s\n", w.c_str());
   g_interrupted = 0;
   std::signal(SIGINT, request_stop);
   std::signal(SIGTERM, request_stop);

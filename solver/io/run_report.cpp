@@ -89,8 +89,7 @@ RunSummary summarize(const Scene& scene, const Model& md, const State& st, const
   if (comm.rank() != 0) return s;
   for (const auto& p : s.presses) std::fprintf(stderr, "rksolve: %s\n", p.c_str());
   for (const auto& w : s.warnings) std::fprintf(stderr, "rksolve: warning: %s\n", w.c_str());
-  for (const auto& w : temperature_warnings(scene)) s.warnings.push_back(w);  // printed at the start
-  for (const auto& w : accuracy_warnings(scene)) s.warnings.push_back(w);
+  for (const auto& w : scene_warnings(scene)) s.warnings.push_back(w);  // printed at the start
   for (const auto& w : counts.start_warnings) s.warnings.push_back(w);
   for (int p = 0; p < kPhaseCount; ++p) s.phases[kPhaseNames[p]] = {lo[p], hi[p]};
   const double loop_s = wall - counts.setup_s;

@@ -33,10 +33,10 @@ struct J2Params {
   // Johnson-Cook: A = yield0, B, n, C, rate0 (1/s), m, T_room and T_melt (K)
   bool johnson_cook = false;
   double jc_b = 0, jc_n = 1, jc_c = 0, jc_rate0 = 1, jc_m = 1, t_room = 293.15, t_melt = 0;
-  // Hansel-Spittel: A (Pa), m1 (1/C), m2, m3, m4, m5 (1/C), m7, m8 (1/C), m9; ep and rate minima
+  // Hansel-Spittel: ln A (A in Pa; the log once, at_temperature takes it at every return), m1 (1/C), m2,
+  // m3, m4, m5 (1/C), m7, m8 (1/C), m9; ep and rate minima
   bool hansel_spittel = false;
-  double hs_a = 0, hs_m1 = 0, hs_m2 = 0, hs_m3 = 0, hs_m4 = 0, hs_m5 = 0, hs_m7 = 0, hs_m8 = 0, hs_m9 = 0;
-  double hs_log_a = 0;  // ln A, once (at_temperature takes it at every return)
+  double hs_log_a = 0, hs_m1 = 0, hs_m2 = 0, hs_m3 = 0, hs_m4 = 0, hs_m5 = 0, hs_m7 = 0, hs_m8 = 0, hs_m9 = 0;
   double hs_eps_min = 0, hs_rate_min = 0;
   double hs_eps_offset = 0, hs_rate_offset = 0;  // the law taken at ep + offset, rate + offset (the Freiberg fits')
   // a flow stress table (shared/flow_table.hpp), trilinear in (strain, ln rate, temperature)
@@ -64,7 +64,8 @@ struct J2Params {
   static J2Params hansel_spittel_law(double E, double nu, const double a_m[9], double eps_min, double rate_min,
                                      double eps_offset = 0, double rate_offset = 0) {
     J2Params p = from(E, nu, 0, 0, true);
-    p.hansel_spittel = true, p.hs_a = a_m[0], p.hs_log_a = std::log(a_m[0]), p.hs_m1 = a_m[1], p.hs_m2 = a_m[2], p.hs_m3 = a_m[3], p.hs_m4 = a_m[4];
+    p.hansel_spittel = true, p.hs_log_a = std::log(a_m[0]);
+    p.hs_m1 = a_m[1], p.hs_m2 = a_m[2], p.hs_m3 = a_m[3], p.hs_m4 = a_m[4];
     p.hs_m5 = a_m[5], p.hs_m7 = a_m[6], p.hs_m8 = a_m[7], p.hs_m9 = a_m[8], p.hs_eps_min = eps_min, p.hs_rate_min = rate_min;
     p.hs_eps_offset = eps_offset, p.hs_rate_offset = rate_offset;
     p.yield0 = p.yield(0);

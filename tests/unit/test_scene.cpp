@@ -188,6 +188,7 @@ TEST(Scene, ACelsiusLookingTemperatureIsWarnedByItsKey) {
   const auto w = rk::temperature_warnings(rk::load_scene(write_scene(hot("250"))));  // 250 C written as kelvin
   ASSERT_EQ(w.size(), 1u);
   EXPECT_NE(w[0].find("dies 'top'.temperature = 250 K is -23 C"), std::string::npos) << w[0];
+  EXPECT_EQ(rk::scene_warnings(rk::load_scene(write_scene(hot("250")))), w);  // what rksolve prints and reports
 }
 
 TEST(Scene, OneGaussPointPerCellIsWarnedByItsKey) {
@@ -196,6 +197,7 @@ TEST(Scene, OneGaussPointPerCellIsWarnedByItsKey) {
   const auto w = rk::accuracy_warnings(rk::load_scene(write_scene(one)));
   ASSERT_EQ(w.size(), 1u);
   EXPECT_NE(w[0].find("discretization.gauss_order = 1"), std::string::npos) << w[0];
+  EXPECT_EQ(rk::scene_warnings(rk::load_scene(write_scene(one))), w);  // what rksolve prints and reports
   // nodal integration has no Gauss points: the order is not used, so nothing to warn of
   const auto nodal = replace(one, "  gauss_order: 1\n", "  gauss_order: 1\n  integration: nodal\n");
   EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(nodal))).empty());
@@ -216,9 +218,12 @@ TEST(Scene, APlasticPartWithoutFbarIsWarnedByItsKey) {
 TEST(Scene, TheFrequencysStepWithAPenaltyContactIsWarnedByItsKey) {
   const auto frequency = replace(kGood, "  end: 1.0e-6\n", "  end: 1.0e-6\n  stable_step: frequency\n");
   EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(frequency))).empty());  // no contact: nothing softens
-  const auto w = rk::accuracy_warnings(rk::load_scene(write_scene(frequency + "contact:\n  self: true\n")));
-  ASSERT_EQ(w.size(), 1u);
-  EXPECT_NE(w[0].find("time.stable_step = frequency"), std::string::npos) << w[0];
+  for (const char* contact : {"contact:\n  self: true\n",
+                              "boundaries:\n  rigid_walls:\n    - {name: wall, point: [0, 0, 0], normal: [0, 0, 1]}\n"}) {
+    const auto w = rk::accuracy_warnings(rk::load_scene(write_scene(frequency + contact)));
+    ASSERT_EQ(w.size(), 1u) << contact;
+    EXPECT_NE(w[0].find("time.stable_step = frequency"), std::string::npos) << w[0];
+  }
 }
 
 TEST(Scene, ThermalKeysNeedTheirPhysics) {
