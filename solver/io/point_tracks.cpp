@@ -50,38 +50,46 @@ PointTracks::PointTracks(const std::string& case_dir, const Scene& scene, const 
   });
 }
 
-void PointTracks::map_locals(const Model& md) {
-  track_of_.assign(md.n, -1);
+// The tracked particles held here and the points whose supports hold them, in the order of the
+// points and their neighbours (the sums' order, so the rows do not depend on this list).
+void PointTracks::map_locals(const Model& md, std::int64_t updates) {
+  std::vector<int> track_of(md.n, -1);
+  owned_.clear(), terms_.clear();
   for (std::size_t I = 0; I < md.n; ++I)
-    for (std::size_t k = 0; k < ids_.size(); ++k)
-      if (double(md.global_id[I]) == ids_[k]) track_of_[I] = int(k);
+    for (std::size_t t = 0; t < ids_.size(); ++t)
+      if (double(md.global_id[I]) == ids_[t]) {
+        track_of[I] = int(t);
+        if (md.owned[I]) owned_.push_back({I, int(t)});
+      }
+  for (std::size_t g = 0; g < md.m; ++g)
+    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k)
+      if (const int t = track_of[std::size_t(md.nbr[k])]; t >= 0) terms_.push_back({g, std::size_t(k), t});
+  mapped_ = {updates, md.m, md.nbr.size()};
 }
 
 void PointTracks::record(const Model& md, const State& st, const Comm& comm) {
   if (ids_.empty()) return;
-  map_locals(md);  // the local numbering changes at a reference update
+  // the local numbering and the supports change at a reference update only
+  if (mapped_ != Mapping{st.reference_updates, md.m, md.nbr.size()}) map_locals(md, st.reference_updates);
   const std::size_t stride = std::size_t(values_) + 1;  // the positive weights' sum, then the values
   std::fill(sums_.begin(), sums_.end(), 0.0);
-  for (std::size_t I = 0; I < md.n; ++I) {  // the position, from the owner
-    if (track_of_[I] < 0 || !md.owned[I]) continue;
+  for (const auto& [I, t] : owned_) {  // the position, from the owner
     double x[3];
     material_position(md, st, I, x);
-    for (int i = 0; i < 3; ++i) sums_[stride * std::size_t(track_of_[I]) + 1 + std::size_t(i)] = x[i];
+    for (int i = 0; i < 3; ++i) sums_[stride * std::size_t(t) + 1 + std::size_t(i)] = x[i];
   }
-  for (std::size_t g = 0; g < md.m; ++g)  // every point once, on its rank
-    for (auto k = md.nbr_offsets[g]; k < md.nbr_offsets[g + 1]; ++k) {
-      const int t = track_of_[std::size_t(md.nbr[k])];
-      if (t < 0) continue;
-      const double a = md.weight[g] * std::max(md.N[std::size_t(k)], 0.0);
-      double vm, p;
-      cauchy_measures(&st.tau[6 * g], st.total_J(g), vm, p);
-      double* s = &sums_[stride * std::size_t(t)];
-      s[0] += a;
-      s[4] += a * st.ep[g], s[5] += a * vm, s[6] += a * p;
-      int c = 7;
-      if (!st.temperature.empty()) s[c++] += a * st.temperature[g];
-      for (std::size_t k = 0; k < kDamageCriteria && !st.damage.empty(); ++k) s[c++] += a * st.damage[kDamageCriteria * g + k];
-    }
+  for (const Term& q : terms_) {  // every point once, on its rank
+    const std::size_t g = q.point;
+    const double a = md.weight[g] * std::max(md.N[q.neighbour], 0.0);
+    double vm, p;
+    cauchy_measures(&st.tau[6 * g], st.total_J(g), vm, p);
+    double* s = &sums_[stride * std::size_t(q.track)];
+    s[0] += a;
+    s[4] += a * st.ep[g], s[5] += a * vm, s[6] += a * p;
+    int c = 7;
+    if (!st.temperature.empty()) s[c++] += a * st.temperature[g];
+    for (std::size_t k = 0; k < kDamageCriteria && !st.damage.empty(); ++k) s[c++] += a * st.damage[kDamageCriteria * g + k];
+  }
   comm.sum(sums_.data(), int(sums_.size()));
   row_[0] = st.t;
   for (std::size_t t = 0; t < ids_.size(); ++t) {

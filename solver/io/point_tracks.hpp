@@ -6,6 +6,7 @@
 // supports hold it as the frames average them (docs/outputs.md). A track more than a spacing from
 // every particle is refused by name. Rank 0 writes; a restart keeps the rows before it.
 #pragma once
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,13 +27,27 @@ class PointTracks {
   void record(const Model& md, const State& st, const Comm& comm);
 
  private:
+  struct Owned {
+    std::size_t particle;
+    int track;
+  };
+  struct Term {  // a point whose support holds a tracked particle
+    std::size_t point, neighbour;  // neighbour: the index into md.nbr and md.N
+    int track;
+  };
+  struct Mapping {  // what the lists were built on: a reference update renumbers the local particles
+    std::int64_t updates = -1;
+    std::size_t points = 0, neighbours = 0;
+    bool operator==(const Mapping&) const = default;
+  };
   std::vector<double> ids_;        // per track: the global id of its particle
-  std::vector<int> track_of_;      // per local particle: its track, -1 for none (rebuilt at each row:
-                                   // a reference update renumbers the local particles)
+  std::vector<Owned> owned_;       // the tracked particles this rank owns
+  std::vector<Term> terms_;        // in the order of the points and their neighbours
+  Mapping mapped_;
   int values_ = 0;                 // per track: x, y, z, eq_plastic_strain, von_mises, pressure [, T] [, 2 damage]
   std::vector<double> sums_, row_;
   std::unique_ptr<HistoryWriter> writer_;
-  void map_locals(const Model& md);
+  void map_locals(const Model& md, std::int64_t updates);
 };
 
 }  // namespace rk
