@@ -15,9 +15,7 @@ pvbatch without --symmetric (only process 0 runs the script) hangs at exit in th
 ParaView 5.11 with Open MPI 4.1: process 0 waits in MPI_Barrier in vtkProcessModule::Finalize), so
 every process runs the script."""
 import json
-import os
 import shutil
-import signal
 import subprocess
 import time
 import xml.etree.ElementTree as ET
@@ -134,25 +132,20 @@ rkcase.check([r["process"] for r in read] == [0, 1] and all(r["processes"] == 2 
 # The render needs an X server (Xvfb): under the suite's load it refused a process's window in 1 run of
 # 6 to 3 runs of 3 (2026-12-02, "bad X server connection", before any of this software's work), and
 # once (2026-12-07) an attempt aborted and the next hung, so it is tried up to five times, each given
-# RENDER_S seconds (the whole test takes 14 s alone) and then killed with its process group (xvfb-run, Xvfb,
-# mpirun, pvbatch); a run whose every attempt the X server refused says so and checks the read only,
+# RENDER_S seconds (the whole test takes 14 s alone), then killed with everything it started
+# (rkcase.Tools.run); a run whose every attempt the X server refused says so and checks the read only,
 # and any other failure of every attempt fails the test.
 RENDER_S = 120
 
 
 def render(png):
     """One attempt: its exit status (None when it hung) and its stderr."""
-    proc = subprocess.Popen([str(a) for a in ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", "mpirun", "-np", "2",
-                                              "--oversubscribe", "pvbatch", "--symmetric",
-                                              PIPELINE / "pv_parallel_render.py", last, png, top]],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=tools.env,
-                            start_new_session=True)
     try:
-        _, err = proc.communicate(timeout=RENDER_S)
-        return proc.returncode, err
-    except subprocess.TimeoutExpired:
-        os.killpg(proc.pid, signal.SIGKILL)
-        return None, proc.communicate()[1] + f"\n(hung: killed after {RENDER_S} s)"
+        p = tools.run(["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", "mpirun", "-np", "2", "--oversubscribe", "pvbatch",
+                       "--symmetric", PIPELINE / "pv_parallel_render.py", last, png, top], expect_ok=False, timeout=RENDER_S)
+        return p.returncode, p.stderr
+    except subprocess.TimeoutExpired as e:
+        return None, (e.stderr or "") + f"\n(hung: killed after {RENDER_S} s)"
 
 
 png = case / "parallel.png"

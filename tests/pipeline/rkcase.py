@@ -1,6 +1,7 @@
 """Shared helpers of the pipeline tests: run the three programs as a user would, read what rkpost wrote."""
 import os
 import shutil
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -24,7 +25,20 @@ class Tools:
         self.env = dict(os.environ, **MPI_ENV)
 
     def run(self, args, expect_ok=True, timeout=900):
-        p = subprocess.run([str(a) for a in args], capture_output=True, text=True, env=self.env, timeout=timeout)
+        """The program's CompletedProcess. Past `timeout` (or on an interrupt) it is killed with everything
+        it started, its process group (mpirun's ranks, xvfb-run's X server), and TimeoutExpired is raised
+        with its stderr."""
+        proc = subprocess.Popen([str(a) for a in args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                env=self.env, start_new_session=True)
+        try:
+            out, err = proc.communicate(timeout=timeout)
+        except BaseException as e:
+            os.killpg(proc.pid, signal.SIGKILL)
+            out, err = proc.communicate()
+            if isinstance(e, subprocess.TimeoutExpired):
+                e.stderr = err
+            raise
+        p = subprocess.CompletedProcess(proc.args, proc.returncode, out, err)
         if expect_ok and p.returncode != 0:
             raise AssertionError(f"{' '.join(map(str, args))} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
         return p
