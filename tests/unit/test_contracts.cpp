@@ -14,10 +14,11 @@
 #include "phase_names.hpp"
 #include "run_summary.hpp"
 #include "scene.hpp"
+#include "source_dir.hpp"
 
 namespace {
 
-const std::string kSource = RK_SOURCE_DIR;
+using rk::test::kSource;
 
 TEST(Contracts, RunSummaryReadsBackWhatWasWritten) {
   const std::string path = (std::filesystem::temp_directory_path() / "rk_contract_solve.json").string();

@@ -39,10 +39,11 @@
 #include "model.hpp"
 #include "scene.hpp"
 #include "state.hpp"
+#include "source_dir.hpp"
 
 namespace {
 
-const std::string kSource = RK_SOURCE_DIR;
+using rk::test::kSource;
 
 struct Upsetting {
   rk::Scene scene = rk::load_scene(kSource + "/geometry/upsetting/scene.yaml", {{"discretization.spacing", "2.5e-3"}});

@@ -10,6 +10,7 @@
 #include "material_above.hpp"
 #include "scene.hpp"
 #include "state.hpp"
+#include "source_dir.hpp"
 
 namespace {
 
@@ -17,7 +18,7 @@ namespace {
 // kinetic energy is M |(a + b) / 2|^2 / 2 and the central difference's M a . b / 2, M the part's mass.
 // With b = -a (a particle at the turn of its swing) the first is 0 and the second -M |a|^2 / 2.
 TEST(EnergyError, TheRanksKineticEnergiesFromTheTwoHalfStepVelocities) {
-  const rk::Scene scene = rk::load_scene(std::string(RK_SOURCE_DIR) + "/geometry/upsetting/scene.yaml",
+  const rk::Scene scene = rk::load_scene(rk::test::kSource + "/geometry/upsetting/scene.yaml",
                                          {{"discretization.spacing", "2.5e-3"}});
   const std::vector<rk::DieSurface> dies{rk::mesh_die(scene.dies[0], scene.discretization.spacing)};
   const rk::Model md = one_rank_model(scene, dies);

@@ -32,10 +32,11 @@
 #include "rk/internal_force.hpp"
 #include "rk/row3.hpp"
 #include "scene.hpp"
+#include "source_dir.hpp"
 
 namespace {
 
-const std::string kSource = RK_SOURCE_DIR;
+using rk::test::kSource;
 
 TEST(FixedPoint, EveryTermAtTheBoundSumsWithinInt64) {
   for (const std::int64_t terms : {std::int64_t(1), std::int64_t(2), std::int64_t(3), std::int64_t(500),

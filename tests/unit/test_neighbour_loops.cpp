@@ -17,10 +17,11 @@
 #include "rk/kinematics.hpp"
 #include "scene.hpp"
 #include "state.hpp"
+#include "source_dir.hpp"
 
 namespace {
 
-const std::string kSource = RK_SOURCE_DIR;
+using rk::test::kSource;
 
 struct Billet {
   rk::Scene scene = rk::load_scene(kSource + "/geometry/upsetting/scene.yaml", {{"discretization.spacing", "2.5e-3"}});

@@ -21,10 +21,11 @@
 #include "nodal_integration.hpp"
 #include "partition.hpp"
 #include "scene.hpp"
+#include "source_dir.hpp"
 
 namespace {
 
-const std::string kSource = RK_SOURCE_DIR;
+using rk::test::kSource;
 
 // Written when the test cases are listed, so by every test process that ctest starts: one file per process
 // (a shared one was rewritten under a reader running beside it, which then read an empty box), removed at

@@ -11,6 +11,7 @@
 #include "discretize.hpp"
 #include "neighbour_grid.hpp"
 #include "partition.hpp"
+#include "source_dir.hpp"
 
 namespace {
 
@@ -20,7 +21,7 @@ TEST_P(Partition, Invariants) {
   const auto [ranks, method] = GetParam();
   const double dilation = 2.0;
   const rk::VolumeMesh mesh =
-      rk::mesh_cad({std::string(RK_SOURCE_DIR) + "/geometry/taylor_bar/taylor_bar.geo", 1e-3, 1.2e-3});
+      rk::mesh_cad({rk::test::kSource + "/geometry/taylor_bar/taylor_bar.geo", 1e-3, 1.2e-3});
   const rk::Discretization disc = rk::discretize(mesh, 2);
   const auto cell_rank = rk::partition_cells(mesh, disc, ranks, method);
   const auto subs = rk::build_subdomains({mesh, disc, cell_rank, ranks, dilation, "hash", {}});

@@ -15,10 +15,11 @@
 #include "model.hpp"
 #include "scene.hpp"
 #include "state.hpp"
+#include "source_dir.hpp"
 
 namespace {
 
-const std::string kSource = RK_SOURCE_DIR;
+using rk::test::kSource;
 constexpr double kTop = 10e-3;
 
 struct WalledBillet {

@@ -7,6 +7,7 @@
 
 #include "error.hpp"
 #include "scene.hpp"
+#include "source_dir.hpp"
 
 namespace {
 
@@ -62,7 +63,7 @@ TEST(Scene, GoodSceneResolvesDefaults) {
 // Dies take the same default step; their penalty's scale holds at CFL 0.5, so at 0.9 it is taken
 // (0.9 / 0.5)^2 times: the same stiffness k = s m / dt^2 at the 1.8x step.
 TEST(Scene, DiesTakeTheDefaultStepAndKeepTheirPenaltysStiffness) {
-  const rk::Scene s = rk::load_scene(std::string(RK_SOURCE_DIR) + "/geometry/upsetting/scene.yaml");
+  const rk::Scene s = rk::load_scene(rk::test::kSource + "/geometry/upsetting/scene.yaml");
   ASSERT_FALSE(s.dies.empty());
   EXPECT_DOUBLE_EQ(s.time.cfl, 0.9);
   EXPECT_DOUBLE_EQ(s.penalty_scale_at_cfl(), s.contact.penalty_scale * 3.24);
@@ -136,7 +137,7 @@ TEST(Scene, SubcyclingRefusesWhatItIsNotBuiltFor) {
   EXPECT_EQ(rk::load_scene(write_scene(kGood), with("1")).time.subcycling, 1);
   for (const char* bad : {"6", "32", "fast", "0"})
     EXPECT_NE(error_of(kGood, with(bad)).find("key 'time.subcycling': must be auto, 1, 2, 4, 8 or 16"), std::string::npos) << bad;
-  const std::string upsetting = std::string(RK_SOURCE_DIR) + "/geometry/upsetting/scene.yaml";
+  const std::string upsetting = rk::test::kSource + "/geometry/upsetting/scene.yaml";
   // auto, the default: the largest ratio where the scene allows it, one rate where it does not; the
   // resolved deck keeps "auto", so that it resolves again when read with other keys set
   const rk::Scene bar = rk::load_scene(write_scene(kGood));
@@ -290,7 +291,7 @@ TEST(Scene, TheShippedMaterialsLoad) {
   for (const char* name : {"aisi_1045", "ofhc_copper", "aluminium_2024", "c45_hot"}) {
     const std::string scene = replace(kGood, "  model: j2_linear\n  density: 8930\n  youngs_modulus: 117.0e9\n  poisson_ratio: 0.35\n"
                                              "  yield_stress: 400.0e6\n",
-                                      std::string("  library: ") + RK_SOURCE_DIR + "/geometry/materials/" + name + ".yaml\n");
+                                      "  library: " + rk::test::kSource + "/geometry/materials/" + name + ".yaml\n");
     const rk::Scene s = rk::load_scene(write_scene(scene));
     EXPECT_TRUE(s.material.thermal() && s.material.conducting()) << name;
     if (std::string(name) == "c45_hot") {  // the Freiberg form's offsets, EN 1993-1-2's c(T) with its peak at 735 C

@@ -14,6 +14,7 @@
 #include "h5file.hpp"
 #include "hash.hpp"
 #include "subdomain.hpp"
+#include "source_dir.hpp"
 
 namespace {
 
@@ -153,7 +154,7 @@ namespace {
 // Crashes found by `make fuzz` (tests/fuzz), kept as regression tests.
 std::string fuzz_case(const std::string& name) {  // a copy with a matching hash: HDF5 parses it
   const std::string path = temp(name);
-  fs::copy_file(std::string(RK_SOURCE_DIR) + "/tests/unit/data/" + name, path, fs::copy_options::overwrite_existing);
+  fs::copy_file(rk::test::kSource + "/tests/unit/data/" + name, path, fs::copy_options::overwrite_existing);
   rehash(path);
   return path;
 }
@@ -171,7 +172,7 @@ namespace {
 
 TEST(SubdomainFuzz, CorruptFileIsRefusedBeforeHdf5ParsesIt) {  // libhdf5 itself overflows on this one
   const std::string path = temp("fuzz_overflow.h5");
-  fs::copy_file(std::string(RK_SOURCE_DIR) + "/tests/unit/data/fuzz_subdomain_overflow_1.h5", path,
+  fs::copy_file(rk::test::kSource + "/tests/unit/data/fuzz_subdomain_overflow_1.h5", path,
                 fs::copy_options::overwrite_existing);
   const std::string e = error_of(path, 0, 1, "");
   EXPECT_NE(e.find("checksum file missing"), std::string::npos) << e;
