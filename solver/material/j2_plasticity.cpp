@@ -60,17 +60,27 @@ void set_lane(Sym& a, int l, const Eigen::Matrix3d& m) {
   a.v[3][l] = m(0, 1), a.v[4][l] = m(1, 2), a.v[5][l] = m(2, 0);
 }
 
-// Each lane's temperature terms of a rate-dependent law (J2Params::at_temperature), once a return.
+// Each lane's temperature terms of a rate-dependent law (J2Params::at_temperature's formulas), once a
+// return: Johnson-Cook's and Hansel-Spittel's across the lanes (lanes.hpp's exp and log: a pow a lane
+// was 4.5 % of the Johnson-Cook Taylor bar's samples), a table's lane by lane.
 struct TemperatureLanes {
-  J2Params::AtTemperature at[kLanes];
-  // gathered for the evaluation across the lanes: Johnson-Cook's and Hansel-Spittel's
-  Lane thermal{}, log_a{}, strain_t{}, rate_exponent{};
+  J2Params::AtTemperature at[kLanes];  // a table's
+  Lane thermal = splat(1), log_a{}, strain_t{}, rate_exponent{};
   TemperatureLanes(const J2Params& p, Lane T) {
-    for (int l = 0; l < kLanes; ++l) {
-      at[l] = p.at_temperature(T[l]);
-      thermal[l] = at[l].thermal;
-      log_a[l] = at[l].log_a, strain_t[l] = at[l].strain_t, rate_exponent[l] = at[l].rate_exponent;
+    if (p.johnson_cook) {  // 1 - T*^m between the room and the melting temperature, 1 below, 0 molten
+      const Lane homologous = (T - p.t_room) / (p.t_melt - p.t_room);
+      const LaneMask warm = (homologous > 0) & (homologous < 1);
+      const Lane power = exp(p.jc_m * log(select(warm, homologous, splat(1))));
+      thermal = select(warm, 1 - power, select(homologous >= 1, Lane{}, splat(1)));
     }
+    if (p.hansel_spittel) {
+      const Lane c = T - 273.15;  // the databases' Celsius; T^m9 at 1 C at the least
+      log_a = p.hs_log_a + p.hs_m1 * c;
+      if (p.hs_m9 != 0) log_a += p.hs_m9 * log(select(c > 1, c, splat(1)));
+      strain_t = p.hs_m5 * c, rate_exponent = p.hs_m3 + p.hs_m8 * c;
+    }
+    if (p.table)
+      for (int l = 0; l < kLanes; ++l) at[l] = p.at_temperature(T[l]);
   }
 };
 
@@ -95,8 +105,9 @@ void flow_lanes(const J2Params& p, const TemperatureLanes& t, Lane ep, Lane rate
     const LaneMask strained = ep > p.hs_eps_min, fast = rate > p.hs_rate_min;
     const Lane e = select(strained, ep, splat(p.hs_eps_min)) + p.hs_eps_offset;
     const Lane r = select(fast, rate, splat(p.hs_rate_min)) + p.hs_rate_offset;
-    y = exp(t.log_a + p.hs_m2 * log(e) + p.hs_m4 / e + t.strain_t * log(1 + e) + p.hs_m7 * e + t.rate_exponent * log(r));
-    h = select(strained, y * (p.hs_m2 / e - p.hs_m4 / (e * e) + t.strain_t / (1 + e) + p.hs_m7), Lane{});
+    const Lane m4_e = p.hs_m4 / e;  // (one division for the three terms in 1 / e)
+    y = exp(t.log_a + p.hs_m2 * log(e) + m4_e + t.strain_t * log(1 + e) + p.hs_m7 * e + t.rate_exponent * log(r));
+    h = select(strained, y * ((p.hs_m2 - m4_e) / e + t.strain_t / (1 + e) + p.hs_m7), Lane{});
     hr = select(fast, y * t.rate_exponent / r, Lane{});
     return;
   }
@@ -125,6 +136,7 @@ Lane rate_dependent_return(const J2Params& p, Lane q, J2Batch& b) {
   Lane lo{}, hi = select(plastic, (q - y) / three_g, Lane{});
   Lane dg = select((guess > 0) & (guess < hi), guess, hi);
   LaneMask active = plastic;
+  Lane last{};  // each lane's last step (0 before the first: no estimate of the next)
   for (int it = 0; it < 100 && any(active); ++it) {
     flow_lanes(p, t, b.ep + dg, dt > 0 ? dg / dt : Lane{}, active, y, h, hr);
     const Lane r = q - three_g * dg - y;
@@ -138,16 +150,21 @@ Lane rate_dependent_return(const J2Params& p, Lane q, J2Batch& b) {
     Lane next = dg * exp(select(active, r / slope, Lane{}));
     next = select((next > lo) & (next < hi), next, 0.5 * (lo + hi));  // Newton left the bracket (or slope infinite)
     // converged: a step below 1e-12 of dgamma (a tighter one is below the round-off of r when
-    // dgamma is small against q / 3G), or the bracket at round-off
-    const Lane step = next - dg;
-    const LaneMask done = ((step <= 1e-12 * dg) & (step >= -1e-12 * dg)) | (hi - lo <= 1e-15 * hi);
+    // dgamma is small against q / 3G), or the bracket at round-off; or a step below 1e-6 of dgamma
+    // where Newton's convergence is quadratic, e_k+1 ~ e_k^3 / e_k-1^2 from the last two steps, and
+    // puts the next one below 1e-14 of dgamma: its evaluation would only confirm it
+    const Lane step = next - dg, ratio = step / last;
+    last = step;
+    const LaneMask small = ((step <= 1e-12 * dg) & (step >= -1e-12 * dg)) | (hi - lo <= 1e-15 * hi);
+    const LaneMask quadratic = (step <= 1e-6 * dg) & (step >= -1e-6 * dg) & (ratio * ratio * step <= 1e-14 * dg) &
+                               (ratio * ratio * step >= -1e-14 * dg);
+    const LaneMask done = small | quadratic;
     dg = select(active, next, dg);
     active &= ~done;
   }
-  flow_lanes(p, t, b.ep + dg, dt > 0 ? dg / dt : Lane{}, plastic, y, h, hr);
   b.plastic = plastic;
   b.ep = select(plastic, b.ep + dg, b.ep);
-  b.dissipation = select(plastic, y * dg, Lane{});
+  b.dissipation = select(plastic, (q - three_g * dg) * dg, Lane{});  // the returned stress, sigma_y to the round-off
   return select(plastic, dg, Lane{});
 }
 
