@@ -152,12 +152,13 @@ Lane rate_dependent_return(const J2Params& p, Lane q, J2Batch& b) {
     // converged: a step below 1e-12 of dgamma (a tighter one is below the round-off of r when
     // dgamma is small against q / 3G), or the bracket at round-off; or a step below 1e-6 of dgamma
     // where Newton's convergence is quadratic, e_k+1 ~ e_k^3 / e_k-1^2 from the last two steps, and
-    // puts the next one below 1e-14 of dgamma: its evaluation would only confirm it
-    const Lane step = next - dg, ratio = step / last;
+    // puts the next one below dgamma's round-off, 1e-16 of it: its evaluation could not change dgamma
+    // (where the returned stress is no cancellation, 3G dgamma below half of q, as in the power law's)
+    const Lane step = next - dg, ratio = step / last, next_error = ratio * ratio * step, round_off = 1e-16 * next;
     last = step;
     const LaneMask small = ((step <= 1e-12 * dg) & (step >= -1e-12 * dg)) | (hi - lo <= 1e-15 * hi);
-    const LaneMask quadratic = (step <= 1e-6 * dg) & (step >= -1e-6 * dg) & (ratio * ratio * step <= 1e-14 * dg) &
-                               (ratio * ratio * step >= -1e-14 * dg);
+    const LaneMask quadratic = (step <= 1e-6 * dg) & (step >= -1e-6 * dg) & (next_error <= round_off) &
+                               (next_error >= -round_off) & (three_g * next <= 0.5 * q);
     const LaneMask done = small | quadratic;
     dg = select(active, next, dg);
     active &= ~done;
@@ -192,8 +193,9 @@ void binomial_series(Lane u, const J2Params& p, Lane& value, Lane& slope) {
 // dg0 = (q - sigma_y(ep)) / 3G; a lane whose dg0 passes z0 / 4 (a step's plastic strain a quarter of the strain so far: the first steps of an impact)
 // iterates on pow alone. Newton stops at a step below 1e-14 of dgamma, or (across the lanes) below the
 // round-off of q / 3G, where the residual's round-off can keep the step from falling under the first
-// (steps of 1e-5 on 1 m/s upsetting), or where the law's curvature bounds the next step's error below
-// that (from the linear guess one step is enough: 1e-6 of dgamma, then 1e-18); 50 iterations only guard the loop.
+// (steps of 1e-5 on 1 m/s upsetting), or where the law's curvature bounds the next step below dgamma's
+// round-off (from the linear guess one step is enough on the upsetting: 1e-6 of dgamma, then about
+// 1e-18); 50 iterations only guard the loop.
 Lane power_law_return(const J2Params& p, Lane q, J2Batch& b) {
   Lane dgamma{};
   const Lane z0 = p.eps0 + b.ep;
@@ -219,7 +221,11 @@ Lane power_law_return(const J2Params& p, Lane q, J2Batch& b) {
   if (!any(series)) return dgamma;
   const Lane three_g = splat(3 * p.shear);
   // the residual's curvature over dg >= 0 is at most y0 n (1 - n) / z0^2 ((1 + u)^(n - 2) <= 1) and its
-  // slope at least 3G, so the error after a Newton step s is at most that / (2 3G) (2 s)^2
+  // slope at least 3G, so the error after a Newton step s is at most that / (2 3G) (2 s)^2; a lane stops
+  // once that is below dgamma's round-off, 1e-16 of it, where the returned stress q - 3G dg is no
+  // cancellation (3G dg below half of q, so dgamma's last bit moves the stress by at most its own); a
+  // larger increment takes the steps that set its last bits (without them the stress of an increment of
+  // u = 0.24 read 5 ulp off sigma_y instead of 2, built at -O1)
   const Lane curvature = y0 * (p.exponent * (1 - p.exponent)) / (z0 * z0);
   Lane dg = select(series, (q - y0) / (three_g + h0), Lane{}), value, slope;
   LaneMask active = series;
@@ -229,7 +235,7 @@ Lane power_law_return(const J2Params& p, Lane q, J2Batch& b) {
     dg = select(active, dg + step, dg);
     const Lane tolerance = 1e-14 * dg + 1e-15 * q / three_g;  // or at the round-off of q
     const Lane next_error = 2 * curvature * step * step / three_g;
-    active &= ((step > tolerance) | (step < -tolerance)) & (next_error > tolerance);
+    active &= ((step > tolerance) | (step < -tolerance)) & ((next_error > 1e-16 * dg) | (three_g * dg > 0.5 * q));
   }
   dgamma = select(series, dg, dgamma);
   b.ep = select(series, b.ep + dg, b.ep);
