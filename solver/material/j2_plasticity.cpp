@@ -151,14 +151,14 @@ Lane rate_dependent_return(const J2Params& p, Lane q, J2Batch& b) {
     next = select((next > lo) & (next < hi), next, 0.5 * (lo + hi));  // Newton left the bracket (or slope infinite)
     // converged: a step below 1e-12 of dgamma (a tighter one is below the round-off of r when
     // dgamma is small against q / 3G), or the bracket at round-off; or a step below 1e-6 of dgamma
-    // where Newton's convergence is quadratic, e_k+1 ~ e_k^3 / e_k-1^2 from the last two steps, and
+    // where Newton's convergence is quadratic, e_k+1 ~ |e_k|^3 / e_k-1^2 from the last two steps, and
     // puts the next one below dgamma's round-off, 1e-16 of it: its evaluation could not change dgamma
     // (where the returned stress is no cancellation, 3G dgamma below half of q, as in the power law's)
-    const Lane step = next - dg, ratio = step / last, next_error = ratio * ratio * step, round_off = 1e-16 * next;
+    const Lane step = next - dg, size = select(step < 0, -step, step);
+    const LaneMask small = (size <= 1e-12 * dg) | (hi - lo <= 1e-15 * hi);
+    const LaneMask quadratic = (size <= 1e-6 * dg) & (size * size * size <= 1e-16 * next * last * last) &
+                               (three_g * next <= 0.5 * q);
     last = step;
-    const LaneMask small = ((step <= 1e-12 * dg) & (step >= -1e-12 * dg)) | (hi - lo <= 1e-15 * hi);
-    const LaneMask quadratic = (step <= 1e-6 * dg) & (step >= -1e-6 * dg) & (next_error <= round_off) &
-                               (next_error >= -round_off) & (three_g * next <= 0.5 * q);
     const LaneMask done = small | quadratic;
     dg = select(active, next, dg);
     active &= ~done;
@@ -194,8 +194,8 @@ void binomial_series(Lane u, const J2Params& p, Lane& value, Lane& slope) {
 // iterates on pow alone. Newton stops at a step below 1e-14 of dgamma, or (across the lanes) below the
 // round-off of q / 3G, where the residual's round-off can keep the step from falling under the first
 // (steps of 1e-5 on 1 m/s upsetting), or where the law's curvature bounds the next step below dgamma's
-// round-off (from the linear guess one step is enough on the upsetting: 1e-6 of dgamma, then about
-// 1e-18); 50 iterations only guard the loop.
+// round-off (from the linear guess the first step is about 1e-6 of dgamma on the upsetting, and the
+// bound then, from the law's constants, about 1e-18 of it); 50 iterations only guard the loop.
 Lane power_law_return(const J2Params& p, Lane q, J2Batch& b) {
   Lane dgamma{};
   const Lane z0 = p.eps0 + b.ep;
@@ -225,7 +225,7 @@ Lane power_law_return(const J2Params& p, Lane q, J2Batch& b) {
   // once that is below dgamma's round-off, 1e-16 of it, where the returned stress q - 3G dg is no
   // cancellation (3G dg below half of q, so dgamma's last bit moves the stress by at most its own); a
   // larger increment takes the steps that set its last bits (without them the stress of an increment of
-  // u = 0.24 read 5 ulp off sigma_y instead of 2, built at -O1)
+  // u = 0.24 read 5 ulp off sigma_y, past the return test's 1e-15, built at -O1)
   const Lane curvature = y0 * (p.exponent * (1 - p.exponent)) / (z0 * z0);
   Lane dg = select(series, (q - y0) / (three_g + h0), Lane{}), value, slope;
   LaneMask active = series;
