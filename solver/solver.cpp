@@ -187,6 +187,7 @@ void Simulation::run() {
 // without heat conduction, straight to the end. The stress at the start (the previous stage's
 // last, which its checkpoint leaves to the next step) is the dwell's.
 void Simulation::dwell() {
+  timer_.start();
   deformation_gradient();
   stress_update();
   for (;;) {
