@@ -12,15 +12,17 @@ ROOT = Path(__file__).resolve().parents[2]
 TAYLOR = ROOT / "geometry" / "taylor_bar" / "scene.yaml"
 sys.path.insert(0, str(ROOT / "scripts"))  # taylor_metrics, upsetting_check
 
-# The ranks yield the core while they wait for a message: ctest runs two tests at once on two cores,
-# and two 2-rank runs whose waiting ranks spin take 1.7-1.8x the wall time of the same runs yielding
-# (measured 2026-12-07, the reference-update Taylor bar to 30 us: 10.3 / 11.2 s against 6.0 / 6.5 s;
-# one run alone the same within the noise).
+# ctest runs two tests at once on two cores, each mpirun believing the cores its own (measured
+# 2026-12-07): its ranks yield the core while they wait for a message (two 2-rank runs whose waiting
+# ranks spin took 1.7-1.8x the wall time of the same runs yielding: 10.3 / 11.2 s against 6.0 / 6.5 s;
+# one run alone the same within the noise), and they are not bound to cores (mpirun binds a 1-rank
+# run to core 0, so two of them at once shared it: 2.09 / 2.18 s against 1.29 / 1.25 s unbound).
 MPI_ENV = {
     "OMPI_ALLOW_RUN_AS_ROOT": "1",
     "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
     "OMPI_MCA_rmaps_base_oversubscribe": "1",
     "OMPI_MCA_mpi_yield_when_idle": "1",
+    "OMPI_MCA_hwloc_base_binding_policy": "none",
 }
 
 
