@@ -1,5 +1,6 @@
-#include "material/j2_plasticity.hpp"
+#include "material/j2_point.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 

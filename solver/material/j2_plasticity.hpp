@@ -10,9 +10,8 @@
 // ep and rate held at their minima below them. Both returns are rate-dependent: the plastic strain
 // rate is this increment's, dgamma / dt, solved with dgamma (not the last step's rate).
 // `plastic = false` gives the Hencky hyperelastic case.
-// The update runs kLanes integration points at once (lanes.hpp); j2_update(F, ...) is one point.
+// The update runs kLanes integration points at once (lanes.hpp); j2_point.hpp updates one point.
 #pragma once
-#include <Eigen/Dense>
 #include <cmath>
 
 #include <memory>
@@ -135,15 +134,5 @@ struct J2Batch {
 };
 
 void j2_update(const J2Params& p, J2Batch& b);
-
-struct J2Update {
-  Eigen::Matrix3d tau;
-  double psi = 0, dissipation = 0;
-  bool plastic = false;
-};
-
-// One point (tests, tools): updates cp_inv and ep in place. F must have det F > 0; T and dt as in J2Batch.
-J2Update j2_update(const Eigen::Matrix3d& F, const J2Params& p, double cp_inv[6], double& ep, double T = 0,
-                   double dt = 0);
 
 }  // namespace rk

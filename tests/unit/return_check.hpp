@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "material/j2_plasticity.hpp"
+#include "material/j2_point.hpp"
 
 inline double mises(const Eigen::Matrix3d& tau) {
   const Eigen::Matrix3d d = tau - tau.trace() / 3 * Eigen::Matrix3d::Identity();

@@ -6,7 +6,7 @@
 #include <limits>
 #include <random>
 
-#include "material/j2_plasticity.hpp"
+#include "material/j2_point.hpp"
 #include "return_check.hpp"
 
 namespace {
