@@ -46,6 +46,7 @@ test: build
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build (CMake preset "asan"): unit tests and small
 # pipelines (ctest label asan). Leak reports are off: Open MPI and HDF5 keep global allocations.
+# UBSan without its null and alignment checks (docs/decisions.md: a quarter of its build time, nothing to find).
 # Built at -O1 -g1 (line tables for the reports): half the build time of -O2 -g, the run as fast.
 test-asan: deps
 	@cmake --preset asan >/dev/null
