@@ -46,7 +46,8 @@ test: build
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build (CMake preset "asan"): unit tests and small
 # pipelines (ctest label asan). Leak reports are off: Open MPI and HDF5 keep global allocations.
-# UBSan without its null and alignment checks (docs/decisions.md: a quarter of its build time, nothing to find).
+# UBSan without its null and alignment checks: a quarter of its build time, and what they catch is caught
+# otherwise here (docs/decisions.md).
 # Built at -O1 -g1 (line tables for the reports): half the build time of -O2 -g, the run as fast.
 test-asan: deps
 	@cmake --preset asan >/dev/null

@@ -236,11 +236,12 @@ void HeatTransfer::assemble(const Model& md, State& st, DieContact& dies, double
     q[1] = K[3] * grad[0] + K[1] * grad[1] + K[4] * grad[2];
     q[2] = K[5] * grad[0] + K[4] * grad[1] + K[2] * grad[2];
     const double q_norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
-    const double K_norm = spectral_bound(K);
     const double source = pending ? std::abs(stored(g)) * n_max : 0.0;
-    spread_[g] = K_norm * sum_dN;
     most[0] = std::max(most[0], dt * q_norm * md.dN_max[g] + source);
-    most[1] = std::max(most[1], spread_[g] * md.dN_max[g]);
+    if (bound) {  // the conductance's Gershgorin bound, only where the stable step is refreshed
+      spread_[g] = spectral_bound(K) * sum_dN;
+      most[1] = std::max(most[1], spread_[g] * md.dN_max[g]);
+    }
   }
   // the faces' heat flows into the part (W) and conductances (W/K), each shared by the face's nodes
   auto face_heat_flow = [&](const FaceState& f, double& conductance) {
