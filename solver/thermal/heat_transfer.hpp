@@ -94,6 +94,8 @@ class HeatTransfer {
   std::vector<Fixed> partial_;       // 2 per particle: heat, conductance bound
   std::vector<double> heat_, bound_;
   std::vector<double> enthalpy_, point_enthalpy_;  // e(T_I) and e(T_g), J/m^3: with a specific heat table
+  // of the shape functions on this reference: |grad N| per term; per point their sum and the largest |N|
+  std::vector<double> grad_norm_, grad_norm_sum_, N_max_;
 };
 
 }  // namespace rk
