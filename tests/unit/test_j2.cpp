@@ -241,7 +241,7 @@ TEST(J2, LaneExpAndLogMatchLibm) {
   auto ulps = [](double a, double exact) {
     return std::abs(a - exact) / (std::nextafter(std::abs(exact), INFINITY) - std::abs(exact));
   };
-  double worst_exp = 0, worst_log = 0;
+  double worst_exp = 0, worst_log = 0, sum_exp = 0, sum_log = 0;
   for (int it = 0; it < (1 << 20) / rk::kLanes; ++it) {
     rk::Lane x, z;
     for (int l = 0; l < rk::kLanes; ++l) {
@@ -250,12 +250,18 @@ TEST(J2, LaneExpAndLogMatchLibm) {
     }
     const rk::Lane ex = rk::exp(x), lz = rk::log(z);
     for (int l = 0; l < rk::kLanes; ++l) {
-      worst_exp = std::max(worst_exp, ulps(ex[l], std::exp(x[l])));
-      worst_log = std::max(worst_log, ulps(lz[l], std::log(z[l])));
+      const double e_ulps = ulps(ex[l], std::exp(x[l])), l_ulps = ulps(lz[l], std::log(z[l]));
+      worst_exp = std::max(worst_exp, e_ulps), sum_exp += e_ulps;
+      worst_log = std::max(worst_log, l_ulps), sum_log += l_ulps;
     }
   }
   EXPECT_LE(worst_exp, 2.0);
   EXPECT_LE(worst_log, 2.0);
+  // The mean error, more sensitive than the worst to how the series are summed: measured 0.060 (exp) and
+  // 0.016 ulp (log), Horner's and Estrin's alike; e^r summed by Estrin to its first term (the roundings
+  // near 1 not Horner's) reads 0.25-0.40 ulp with its worst still at 1-2 ulp. Bounds twice the measured.
+  EXPECT_LE(sum_exp / (1 << 20), 0.12);
+  EXPECT_LE(sum_log / (1 << 20), 0.035);
   const rk::Lane out = rk::exp(rk::splat(800.0)), in = rk::exp(rk::splat(-800.0));
   EXPECT_EQ(out[0], std::exp(800.0));
   EXPECT_EQ(in[0], std::exp(-800.0));
