@@ -87,9 +87,11 @@ struct TemperatureLanes {
 
 // The flow stress and its slopes d/d ep, d/d rate at each lane's (ep, rate): Johnson-Cook and
 // Hansel-Spittel across the lanes (J2Params::johnson_cook_at's and hansel_spittel_at's formulas, with
-// lanes.hpp's exp and log), a table lane by lane where `use`.
+// lanes.hpp's exp and log), a table lane by lane where `use`. With `curvature` (not for a table) also
+// the second derivative along a return's path, rate = dgamma / dt: y_ee + 2 y_er / dt + y_rr / dt^2
+// (y_ee alone where dt = 0), for Halley's step.
 void flow_lanes(const J2Params& p, const TemperatureLanes& t, Lane ep, Lane rate, LaneMask use, Lane& y, Lane& h,
-                Lane& hr) {
+                Lane& hr, Lane* curvature = nullptr, double dt = 0) {
   if (p.johnson_cook) {
     const LaneMask strained = ep > 0, fast = rate > p.jc_rate0;
     const Lane hard = select(strained, p.jc_b * exp(p.jc_n * log(select(strained, ep, splat(1)))), Lane{});
@@ -100,6 +102,11 @@ void flow_lanes(const J2Params& p, const TemperatureLanes& t, Lane ep, Lane rate
     y = strain * rate_factor * t.thermal;
     h = strain_slope * rate_factor * t.thermal;
     hr = select(fast, strain * t.thermal * p.jc_c / rate, Lane{});
+    if (curvature) {  // B n (n - 1) ep^(n-2) times the rest; (B n ep^(n-1)) (C / rate); - hr / rate
+      *curvature = select(strained, h * (p.jc_n - 1) / select(strained, ep, splat(1)), Lane{});
+      if (dt > 0)
+        *curvature += select(fast, (2 * strain_slope * t.thermal * p.jc_c - hr / dt) / (rate * dt), Lane{});
+    }
     return;
   }
   if (p.hansel_spittel) {
@@ -108,8 +115,14 @@ void flow_lanes(const J2Params& p, const TemperatureLanes& t, Lane ep, Lane rate
     const Lane r = select(fast, rate, splat(p.hs_rate_min)) + p.hs_rate_offset;
     const Lane m4_e = p.hs_m4 / e;  // (one division for the three terms in 1 / e)
     y = exp(t.log_a + p.hs_m2 * log(e) + m4_e + t.strain_t * log(1 + e) + p.hs_m7 * e + t.rate_exponent * log(r));
-    h = select(strained, y * ((p.hs_m2 - m4_e) / e + t.strain_t / (1 + e) + p.hs_m7), Lane{});
+    const Lane log_slope = (p.hs_m2 - m4_e) / e + t.strain_t / (1 + e) + p.hs_m7;  // d ln y / d e
+    h = select(strained, y * log_slope, Lane{});
     hr = select(fast, y * t.rate_exponent / r, Lane{});
+    if (curvature) {  // y ((ln y)_e^2 + (ln y)_ee), y_e (ln y)_r, y_r (m3 + m8 T - 1) / r
+      const Lane log_curve = (2 * m4_e - p.hs_m2) / (e * e) - t.strain_t / ((1 + e) * (1 + e));
+      *curvature = select(strained, y * (log_slope * log_slope + log_curve), Lane{});
+      if (dt > 0) *curvature += select(fast, (2 * h * t.rate_exponent + hr * (t.rate_exponent - 1) / dt) / (r * dt), Lane{});
+    }
     return;
   }
   for (int l = 0; l < kLanes; ++l)
@@ -138,18 +151,32 @@ Lane rate_dependent_return(const J2Params& p, Lane q, J2Batch& b) {
   Lane dg = select((guess > 0) & (guess < hi), guess, hi);
   LaneMask active = plastic;
   Lane last{};  // each lane's last step (0 before the first: no estimate of the next)
+  const bool halley = !p.table;  // (a table's flow stress has no curvature here: Newton's steps)
+  Lane curve{};
   for (int it = 0; it < 100 && any(active); ++it) {
-    flow_lanes(p, t, b.ep + dg, dt > 0 ? dg / dt : Lane{}, active, y, h, hr);
+    flow_lanes(p, t, b.ep + dg, dt > 0 ? dg / dt : Lane{}, active, y, h, hr, halley ? &curve : nullptr, dt);
     const Lane r = q - three_g * dg - y;
     active &= (r > 1e-15 * q) | (r < -1e-15 * q);  // at the round-off of q: converged
     lo = select(active & (r > 0), dg, lo);
     hi = select(active & ~(r > 0), dg, hi);
     hi = select(active & (lo >= hi), 2 * lo, hi);  // a law softening with strain: the bracket widens
     // Newton in log dgamma: the rate term C ln(dgamma / dt) is linear there (a dgamma of one step
-    // is so small that it dominates the slope), and the strain term nearly so
+    // is so small that it dominates the slope), and the strain term nearly so; with the residual's
+    // second derivative, Halley's step, N / (1 - N r'' / 2 r'), N Newton's (cubic convergence: one
+    // evaluation of the law fewer from a guess near the root)
     const Lane slope = (three_g + h) * dg + (dt > 0 ? hr * dg / dt : Lane{});  // -dr / d ln dgamma
-    Lane next = dg * exp(select(active, r / slope, Lane{}));
-    next = select((next > lo) & (next < hi), next, 0.5 * (lo + hi));  // Newton left the bracket (or slope infinite)
+    const Lane newton = select(active, r / slope, Lane{});
+    Lane log_step = newton;
+    LaneMask cubic{};
+    if (halley) {  // r'' = d^2 r / d (ln dgamma)^2 = -slope - dgamma^2 curve
+      const Lane d = 1 - newton * (slope + dg * dg * curve) / (-2 * slope);
+      cubic = active & (d > 0.5) & (d < 2);  // (else Newton's: far from the root, or no finite curvature)
+      log_step = select(cubic, newton / d, newton);
+    }
+    const Lane stepped = dg * exp(log_step);
+    const LaneMask inside = (stepped > lo) & (stepped < hi);
+    const Lane next = select(inside, stepped, 0.5 * (lo + hi));  // the step left the bracket (or slope infinite)
+    cubic &= inside;
     // converged: a step below 1e-12 of dgamma (a tighter one is below the round-off of r when
     // dgamma is small against q / 3G), or the bracket at round-off; or a step below 1e-6 of dgamma
     // where Newton's convergence is quadratic, e_k+1 ~ |e_k|^3 / e_k-1^2 from the last two steps, and
@@ -157,8 +184,11 @@ Lane rate_dependent_return(const J2Params& p, Lane q, J2Batch& b) {
     // (where the returned stress is no cancellation, 3G dgamma below half of q, as in the power law's)
     const Lane step = next - dg, size = select(step < 0, -step, step);
     const LaneMask small = (size <= 1e-12 * dg) | (hi - lo <= 1e-15 * hi);
-    const LaneMask quadratic = (size <= 1e-6 * dg) & (size * size * size <= 1e-16 * next * last * last) &
-                               (three_g * next <= 0.5 * q);
+    // (after Halley's step e_k+1 ~ e_k^4 / e_k-1^3)
+    const Lane last2 = last * last, size3 = size * size * size;
+    const LaneMask predicted = (cubic & (size3 * size <= 1e-16 * next * last2 * select(last < 0, -last, last))) |
+                               (~cubic & (size3 <= 1e-16 * next * last2));
+    const LaneMask quadratic = (size <= 1e-6 * dg) & predicted & (three_g * next <= 0.5 * q);
     last = step;
     const LaneMask done = small | quadratic;
     dg = select(active, next, dg);
