@@ -162,14 +162,14 @@ Lane rate_dependent_return(const J2Params& p, Lane q, J2Batch& b) {
     hi = select(active & (lo >= hi), 2 * lo, hi);  // a law softening with strain: the bracket widens
     // Newton in log dgamma: the rate term C ln(dgamma / dt) is linear there (a dgamma of one step
     // is so small that it dominates the slope), and the strain term nearly so; with the residual's
-    // second derivative, Halley's step, N / (1 - N r'' / 2 r'), N Newton's (cubic convergence: one
-    // evaluation of the law fewer from a guess near the root)
+    // second derivative, Halley's step N / (1 + N r'' / 2r'), N Newton's, r' = dr / d ln dgamma (cubic
+    // convergence: one evaluation of the law fewer from a guess near the root)
     const Lane slope = (three_g + h) * dg + (dt > 0 ? hr * dg / dt : Lane{});  // -dr / d ln dgamma
     const Lane newton = select(active, r / slope, Lane{});
     Lane log_step = newton;
     LaneMask cubic{};
-    if (halley) {  // r'' = d^2 r / d (ln dgamma)^2 = -slope - dgamma^2 curve
-      const Lane d = 1 - newton * (slope + dg * dg * curve) / (-2 * slope);
+    if (halley) {  // r' = -slope, r'' = -slope - dgamma^2 curve
+      const Lane d = 1 - newton * (-slope - dg * dg * curve) / (2 * slope);
       cubic = active & (d > 0.5) & (d < 2);  // (else Newton's: far from the root, or no finite curvature)
       log_step = select(cubic, newton / d, newton);
     }
