@@ -67,11 +67,17 @@ void load(const Model& md, const State& st, std::size_t c, const Batch& bt, cons
   Lane ratio = cube_root_near_one(r);
   // the thermal stretch taken out: F_mech = F / stretch(T) (1 + alpha (T - T0), or from rho(T)). C_p^-1 is
   // pushed forward at a reference update with the whole F, so the total stretch is right here.
-  if (md.thermal_strain())
+  if (md.thermal_strain() && bt.whole && md.density_table.empty()) {  // (as Model::thermal_stretch)
+    stretch = 1 + md.thermal_expansion * (load_lanes(&st.temperature[g]) - md.initial_temperature);
+    ratio /= stretch;
+  } else if (md.thermal_strain()) {
     for (int l = 0; l < n; ++l) stretch[l] = md.thermal_stretch(st.temperature[bt.point[l]]), ratio[l] /= stretch[l];
-  if (bt.whole && st.temperature.empty() && st.plastic_rate.empty()) {
+  }
+  if (bt.whole) {  // (a lane written one at a time and then read as a vector stalls: docs/decisions.md)
     strided_to_lanes<6>(&st.cp_inv[6 * g], b.cp_inv.v);
     b.ep = load_lanes(&st.ep[g]);
+    if (!st.temperature.empty()) b.T = load_lanes(&st.temperature[g]);
+    if (!st.plastic_rate.empty()) b.rate_last = load_lanes(&st.plastic_rate[g]);
   } else {
     for (int l = 0; l < kLanes; ++l) {
       if (l >= n) {
@@ -245,11 +251,17 @@ StressHealth update_points(const Model& md, State& st, const PressureBound& boun
       else
         for (int l = 0; l < n; ++l) weight[l] = md.weight[bt.point[l]];
       const Lane weighted_mean = weight * (b.tau.v[0] + b.tau.v[1] + b.tau.v[2]) / 3;  // w tr(tau) / 3, for the cell's pressure
-      // a whole batch, where nothing below needs the point's last state (its plastic rate, the damage's
-      // increment, the thermal strain's work), is stored as vectors; C_p^-1 only where it changed
-      const bool as_vectors = bt.whole && st.plastic_rate.empty() && st.damage.empty() && st.stretch_last.empty();
+      // a whole batch, where nothing below needs the point's last state lane by lane (the damage's
+      // increment), is stored as vectors (its plastic rate from the last ep, the last stress's trace for
+      // the thermal strain's work taken first); C_p^-1 only where it changed
+      const bool as_vectors = bt.whole && st.damage.empty();
+      Lane trace_last{};
       if (as_vectors) {
         const std::size_t g = bt.point[0];
+        if (!st.stretch_last.empty())
+          for (int l = 0; l < n; ++l) trace_last[l] = st.tau[6 * (g + l)] + st.tau[6 * (g + l) + 1] + st.tau[6 * (g + l) + 2];
+        if (!st.plastic_rate.empty())
+          store_lanes(&st.plastic_rate[g], b.dt > 0 ? (b.ep - load_lanes(&st.ep[g])) / b.dt : Lane{});
         lanes_to_strided<6>(b.tau.v, &st.tau[6 * g]);
         if (any(b.plastic)) lanes_to_strided<6>(b.cp_inv.v, &st.cp_inv[6 * g]);
         store_lanes(&st.ep[g], b.ep);
@@ -259,7 +271,7 @@ StressHealth update_points(const Model& md, State& st, const PressureBound& boun
       for (int l = 0; l < n; ++l) {
         const std::size_t p = bt.point[l];
         double* t = &st.tau[6 * p];
-        const double trace_before = as_vectors ? 0.0 : t[0] + t[1] + t[2];
+        const double trace_before = as_vectors ? trace_last[l] : t[0] + t[1] + t[2];
         if (!as_vectors) {
           for (int i = 0; i < 6; ++i) t[i] = b.tau.v[i][l], st.cp_inv[6 * p + i] = b.cp_inv.v[i][l];
           if (!st.plastic_rate.empty()) st.plastic_rate[p] = b.dt > 0 ? (b.ep[l] - st.ep[p]) / b.dt : 0.0;
