@@ -255,11 +255,14 @@ StressHealth update_points(const Model& md, State& st, const PressureBound& boun
       // increment), is stored as vectors (its plastic rate from the last ep, the last stress's trace for
       // the thermal strain's work taken first); C_p^-1 only where it changed
       const bool as_vectors = bt.whole && st.damage.empty();
-      Lane trace_last{};
+      Lane trace_last{}, thermal_log{};  // with a thermal strain: ln(stretch / its last), across the lanes
       if (as_vectors) {
         const std::size_t g = bt.point[0];
-        if (!st.stretch_last.empty())
+        if (!st.stretch_last.empty()) {
           for (int l = 0; l < n; ++l) trace_last[l] = st.tau[6 * (g + l)] + st.tau[6 * (g + l) + 1] + st.tau[6 * (g + l) + 2];
+          const Lane last = load_lanes(&st.stretch_last[g]);
+          thermal_log = log(select(last > 0, stretch[k] / last, splat(1)));
+        }
         if (!st.plastic_rate.empty())
           store_lanes(&st.plastic_rate[g], b.dt > 0 ? (b.ep - load_lanes(&st.ep[g])) / b.dt : Lane{});
         lanes_to_strided<6>(b.tau.v, &st.tau[6 * g]);
@@ -282,7 +285,8 @@ StressHealth update_points(const Model& md, State& st, const PressureBound& boun
         }
         if (!st.stretch_last.empty()) {  // the stress's work on the thermal strain over the step (trapezoid)
           if (st.stretch_last[p] > 0)
-            thermal_work += md.weight[p] * 0.5 * (trace_before + t[0] + t[1] + t[2]) * std::log(stretch[k][l] / st.stretch_last[p]);
+            thermal_work += md.weight[p] * 0.5 * (trace_before + t[0] + t[1] + t[2]) *
+                            (as_vectors ? thermal_log[l] : std::log(stretch[k][l] / st.stretch_last[p]));
           st.stretch_last[p] = stretch[k][l];
         }
         // the plastic work's heat, at once at the point (spread by conduction at the next thermal update)
