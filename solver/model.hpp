@@ -117,8 +117,12 @@ struct Model {
   PiecewiseLinear density_table;
   bool thermal_strain() const { return thermal_expansion > 0 || !density_table.empty(); }
   double thermal_stretch(double T) const {
-    return density_table.empty() ? 1 + thermal_expansion * (T - initial_temperature)
+    return density_table.empty() ? linear_thermal_stretch(T)
                                  : std::cbrt(density_table.at(initial_temperature) / density_table.at(T));
+  }
+  template <class Real>  // a double, or a Lane of points (material/stress_update.cpp)
+  Real linear_thermal_stretch(Real T) const {
+    return 1 + thermal_expansion * (T - initial_temperature);
   }
   bool damage_cockcroft_latham = false, damage_brozzo = false, damage_oyane = false;  // the criteria the scene asks for
   double oyane_a = 0;                                                                  // Oyane's constant

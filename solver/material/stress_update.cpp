@@ -67,8 +67,8 @@ void load(const Model& md, const State& st, std::size_t c, const Batch& bt, cons
   Lane ratio = cube_root_near_one(r);
   // the thermal stretch taken out: F_mech = F / stretch(T) (1 + alpha (T - T0), or from rho(T)). C_p^-1 is
   // pushed forward at a reference update with the whole F, so the total stretch is right here.
-  if (md.thermal_strain() && bt.whole && md.density_table.empty()) {  // (as Model::thermal_stretch)
-    stretch = 1 + md.thermal_expansion * (load_lanes(&st.temperature[g]) - md.initial_temperature);
+  if (md.thermal_strain() && bt.whole && md.density_table.empty()) {
+    stretch = md.linear_thermal_stretch(load_lanes(&st.temperature[g]));
     ratio /= stretch;
   } else if (md.thermal_strain()) {
     for (int l = 0; l < n; ++l) stretch[l] = md.thermal_stretch(st.temperature[bt.point[l]]), ratio[l] /= stretch[l];

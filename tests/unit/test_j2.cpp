@@ -550,7 +550,7 @@ TEST(J2, HanselSpittelReturnSolvesForDgammaOnItsStrainTerms) {
 }
 
 // Johnson-Cook (the OFHC copper above) from ep0 = 0, 20-320 C, increments 1 ns to 10 us; 63 of the 63
-// states plastic.
+// states plastic, 14 of them ending where the stop predicts the next step from the law's curvature.
 TEST(J2, JohnsonCookReturnSolvesForDgammaToItsRoundOff) {
   const DgammaError e = dgamma_error(
       kJohnsonCook, {293.15, 443.15, 593.15}, {24, 32, 48, 64, 96, 128, 256}, {1e-9, 1e-7, 1e-5}, 0.0,
@@ -559,6 +559,7 @@ TEST(J2, JohnsonCookReturnSolvesForDgammaToItsRoundOff) {
         return (90e6L + 292e6L * std::pow(ep, 0.31L)) * (1 + 0.025L * std::log(std::max(rate, 1.0L))) * thermal;
       });
   EXPECT_EQ(e.plastic, 63);
+  EXPECT_EQ(e.strained, 14);  // with 3G dgamma below half of q: the stop on the predicted next step
   // measured 5.8e-16 with Halley's steps, 8.0e-16 with Newton's (2026-12-07); Halley's steps with the
   // strain term's curvature left out 9.0e-15
   EXPECT_LT(e.worst, 1.6e-15);
