@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace rk {
@@ -14,6 +15,16 @@ namespace {
 // of terms, per lane, keeps the truncation below 1e-17, under double round-off (the loop bounds, 30
 // and 40 terms, only guard termination); each lane starts its Horner recursion at its own term, so
 // it computes what it would alone (docs/decisions.md, "Elastic log strain by series").
+
+// 1 / n as constants: the series' coefficients 1 / (2k + 1) and 1 / k, the same doubles as the divisions
+// (both correctly rounded) without a division in the recursions, and the factors of exp's term bound (a
+// multiplication for a division there may move the bound's last bit: it only counts the terms)
+constexpr int kSeriesTerms = 40;  // (the exp bound's loop; the log's stops at 30)
+constexpr auto kInverse = [] {
+  std::array<double, 2 * kSeriesTerms + 2> r{};
+  for (int n = 1; n < int(r.size()); ++n) r[std::size_t(n)] = 1.0 / n;
+  return r;
+}();
 
 // log(I + X) = 2 atanh(Y), Y = X (2I + X)^{-1} (X and Y commute): odd powers of Y only, and
 // |Y| ~ |X|/2, so about a third of the terms of the plain series sum_k (-1)^{k+1} X^k / k.
@@ -30,7 +41,7 @@ Sym log_series(const Sym& X, Lane norm, LaneMask use) {
   const Sym Y2 = commuting_product(Y, Y);
   Sym r{};  // (a lane's first term is 1 / (2m + 1) I + Y^2 0, exactly its start)
   for (int k = int(*std::max_element(&m[0], &m[0] + kLanes)); k >= 0; --k)
-    r = select(m >= double(k), identity_sym(splat(1.0 / (2 * k + 1))) + commuting_product(Y2, r), r);
+    r = select(m >= double(k), identity_sym(splat(kInverse[std::size_t(2 * k + 1)])) + commuting_product(Y2, r), r);
   return splat(2) * commuting_product(Y, r);
 }
 
@@ -39,7 +50,7 @@ Sym log_series(const Sym& X, Lane norm, LaneMask use) {
 Sym exp_series(const Sym& A, Lane norm) {
   Lane n{};
   Lane t = norm;  // |A|^k / k!
-  for (int k = 1; k < 40; ++k, t *= norm / (k + 1)) {
+  for (int k = 1; k < kSeriesTerms; ++k, t *= norm * kInverse[std::size_t(k + 1)]) {
     const LaneMask more = t > 1e-17;
     if (!any(more)) break;
     n += select(more, splat(1), Lane{});
@@ -47,7 +58,7 @@ Sym exp_series(const Sym& A, Lane norm) {
   const Sym I = identity_sym(splat(1));
   Sym r = I;
   for (int k = int(*std::max_element(&n[0], &n[0] + kLanes)); k >= 1; --k)
-    r = select(n >= double(k), I + splat(1.0 / k) * commuting_product(A, r), r);
+    r = select(n >= double(k), I + splat(kInverse[std::size_t(k)]) * commuting_product(A, r), r);
   return r;
 }
 
