@@ -14,8 +14,24 @@ struct RulePoint {
   double w;
 };
 
-// Tensor Gauss-Legendre rule on [-1,1]^3 (order = points per direction).
-std::vector<RulePoint> hex_rule(int order) {
+// A hexahedron's rule on [-1,1]^3 (volume 8): the tensor Gauss-Legendre rule (order = points per
+// direction, exact to degree 2 order - 1), or a symmetric rule with fewer points:
+// - four_point: the 2x2x2 rule's points at alternate corners (a regular tetrahedron), weight 2 each;
+//   exact to degree 2: sum w xi^2 = 4 x 2 / 3 = 8/3, and the odd moments cancel in pairs (of the
+//   cubic ones all but xi eta zeta);
+// - six_point: the face centres, weight 4/3 each (Stroud 1971, "Approximate calculation of multiple
+//   integrals", the cube's degree-3 rule of 2n points); exact to degree 3: sum w xi^2 = 2 x 4/3 = 8/3,
+//   and every odd moment cancels. Its points lie on the cell's faces, so an interior face holds two.
+std::vector<RulePoint> hex_rule(int order, const std::string& cell_rule) {
+  if (cell_rule == "four_point") {
+    const double r = 1 / std::sqrt(3.0);
+    return {{{-r, -r, -r}, 2.0}, {{r, r, -r}, 2.0}, {{r, -r, r}, 2.0}, {{-r, r, r}, 2.0}};
+  }
+  if (cell_rule == "six_point") {
+    const double w = 4.0 / 3;
+    return {{{-1, 0, 0}, w}, {{1, 0, 0}, w}, {{0, -1, 0}, w}, {{0, 1, 0}, w}, {{0, 0, -1}, w}, {{0, 0, 1}, w}};
+  }
+  if (cell_rule != "gauss") throw Error("discretize: unknown cell rule '" + cell_rule + "'");
   std::vector<double> x, w;
   if (order == 1) x = {0.0}, w = {2.0};
   else if (order == 2) x = {-1 / std::sqrt(3.0), 1 / std::sqrt(3.0)}, w = {1.0, 1.0};
@@ -63,13 +79,13 @@ const std::vector<std::pair<int, int>>& cell_edges(int nodes_per_cell) {
   return nodes_per_cell == 8 ? hex : tet;
 }
 
-Discretization discretize(const VolumeMesh& mesh, int gauss_order) {
+Discretization discretize(const VolumeMesh& mesh, int gauss_order, const std::string& cell_rule) {
   Discretization d;
   const std::size_t n = mesh.node_count();
   d.volume.assign(n, 0.0);
   d.spacing.assign(n, 0.0);
   std::vector<int> edge_count(n, 0);
-  const auto hex = hex_rule(gauss_order), tet = tet_rule(gauss_order);
+  const auto hex = hex_rule(gauss_order, cell_rule), tet = tet_rule(gauss_order);
   double N[8], dN[8][3];
   for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
     const std::int32_t* nodes = mesh.cell_nodes.data() + mesh.cell_offsets[c];

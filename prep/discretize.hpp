@@ -3,6 +3,7 @@
 // sum of cell volumes) and the local particle spacing h_I (mean length of the cell edges at I).
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "cad_mesh.hpp"
@@ -19,7 +20,9 @@ struct Discretization {
   DualFaces faces;  // nodal integration only: the dual-cell face points, plus/minus numbered as points
 };
 
-Discretization discretize(const VolumeMesh& mesh, int gauss_order);
+// gauss_order: Gauss points per direction (hexahedra) or 1 / 4 points (tetrahedra); cell_rule: a
+// hexahedron's rule, "gauss" (gauss_order^3 points), "four_point" or "six_point" (Scene::Discretization)
+Discretization discretize(const VolumeMesh& mesh, int gauss_order, const std::string& cell_rule = "gauss");
 
 // Edges of a cell as pairs of its local node numbers (gmsh ordering).
 const std::vector<std::pair<int, int>>& cell_edges(int nodes_per_cell);

@@ -134,7 +134,7 @@ int run(int argc, char** argv) {
   });
   const rk::Discretization disc =
       timer.run("discretize", [&] {
-        rk::Discretization d = rk::discretize(mesh, scene.discretization.gauss_order);
+        rk::Discretization d = rk::discretize(mesh, scene.discretization.gauss_order, scene.discretization.cell_rule);
         if (scene.discretization.integration == "nodal") rk::use_nodal_points(mesh, d);
         return d;
       });

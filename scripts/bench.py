@@ -109,7 +109,7 @@ def machine_limit(machine, cost, points, step_bytes=None):
     return out
 
 
-# The paper-resolution bar with the default integration and with the two cheaper ones of the tradeoffs study
+# The paper-resolution bar with the default integration and with the cheaper ones of the tradeoffs study
 # (the default takes multi-rate steps up to 16x on this scene, time.subcycling auto; "one rate" every
 # particle at the smallest step; the frequency's step and nodal integration take one rate)
 PAPER_SETTINGS = [("default (Gauss 2, F-bar, multi-rate steps)", []),
@@ -117,6 +117,8 @@ PAPER_SETTINGS = [("default (Gauss 2, F-bar, multi-rate steps)", []),
                  ("fast pick (Gauss 1, multi-rate steps)", ["discretization.gauss_order=1"]),
                  ("Gauss 1 at one rate", ["discretization.gauss_order=1", "time.subcycling=1"]),
                  ("nodal integration (SCNI)", ["discretization.integration=nodal"]),
+                 ("four points a cell (degree 2)", ["discretization.cell_rule=four_point"]),
+                 ("six points a cell (degree 3, the face centres)", ["discretization.cell_rule=six_point"]),
                  ("default, step from the highest frequency", ["time.stable_step=frequency"]),
                  ("Gauss 1, step from the highest frequency", ["discretization.gauss_order=1", "time.stable_step=frequency"])]
 TAYLOR_REF = {"r_f_mm": 7.22, "L_f_mm": 21.45}  # converged FE (docs/studies.md)

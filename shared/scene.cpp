@@ -591,6 +591,10 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
                   std::to_string(minimum_dilation(o.basis)) + ")");
     o.integration = d.text("integration", o.integration, {"gauss", "nodal"});
     o.gauss_order = d.integer("gauss_order", o.gauss_order, 1, 3);
+    o.cell_rule = d.text("cell_rule", o.cell_rule, {"gauss", "four_point", "six_point"});
+    if (o.integration == "nodal" && o.cell_rule != "gauss")
+      throw Error(name + ": key 'discretization.cell_rule' = " + o.cell_rule + " places the points of Gauss cells, "
+                  "which 'discretization.integration' = nodal does not use; leave it out or use gauss");
     o.volumetric = d.text("volumetric", o.volumetric, {"fbar", "none"});
     o.ebc_method = d.text("ebc_method", o.ebc_method, {"nodal", "transformation"});
     o.jitter = d.number("jitter", o.jitter, {0, 0.5, false, true});

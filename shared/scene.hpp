@@ -170,6 +170,9 @@ struct Scene {
     std::string basis = "linear";
     std::string integration = "gauss";  // gauss (cells' Gauss points) or nodal (SCNI, one point per particle)
     int gauss_order = 2;      // Gauss points per direction in each cell
+    // a hexahedron's points: gauss (gauss_order^3), four_point (degree 2: half of the 2x2x2 points) or
+    // six_point (degree 3: the face centres); tetrahedra keep gauss_order's rule
+    std::string cell_rule = "gauss";
     std::string volumetric = "fbar";  // fbar (cell-averaged dilatation) or none
     std::string ebc_method = "nodal"; // essential BCs: nodal (on the coefficients) or transformation (exact)
     double jitter = 0;        // interior particles moved randomly by up to this x spacing per axis

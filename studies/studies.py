@@ -95,12 +95,15 @@ def convergence():
     # 10 minutes of wall time, so RESUME=1 continues one that was stopped
     # the third series is the default discretization on the stable step from the highest frequency
     # (time.stable_step), 2.7x fewer steps: what makes the finest level affordable on a small machine;
-    # the fourth one Gauss point per cell (the fast setting: 8x fewer points than the default)
+    # the fourth one Gauss point per cell (the fast setting: 8x fewer points than the default); the fifth
+    # and sixth the hexahedra's four- and six-point rules (discretization.cell_rule; not in the smoke run)
     cases = [Case(f"taylor{tag}_h{h}", **taylor(h, end, *solve, *(["output.checkpoint_minutes=10"] if h < 0.4 else []),
                                                  prep=prep, ranks=2 if h < 0.4 else 1), h=h, series=series)
              for series, tag, prep, solve in (("gauss", "", [], []), ("nodal", "_nodal", ["discretization.integration=nodal"], []),
                                               ("frequency", "_frequency", [], ["time.stable_step=frequency"]),
-                                              ("gauss1", "_gauss1", ["discretization.gauss_order=1"], []))
+                                              ("gauss1", "_gauss1", ["discretization.gauss_order=1"], []),
+                                              *(() if SMOKE else (("four_point", "_four_point", ["discretization.cell_rule=four_point"], []),
+                                                                  ("six_point", "_six_point", ["discretization.cell_rule=six_point"], []))))
              for h in hs]
     for h in ([3.0, 2.5] if SMOKE else spacings("UPSET_H", [2.5, 2.0, 1.25, 0.8])):
         solve = ["time.end=1.1e-3", "time.output_interval=1.1e-3"] if SMOKE else []
@@ -121,6 +124,8 @@ def tradeoffs():
         knobs += [("kernel quartic", ["discretization.kernel=quartic_spline"], []),
                   ("basis quadratic", ["discretization.basis=quadratic", "discretization.dilation=3.0"], []),
                   ("gauss 1", ["discretization.gauss_order=1"], []), ("gauss 3", ["discretization.gauss_order=3"], []),
+                  ("four point rule", ["discretization.cell_rule=four_point"], []),
+                  ("six point rule", ["discretization.cell_rule=six_point"], []),
                   ("no F-bar", ["discretization.volumetric=none"], []),
                   ("nodal integration", ["discretization.integration=nodal"], []),
                   ("ebc transformation", ["discretization.ebc_method=transformation"], [])]
@@ -478,7 +483,7 @@ def observed_order(rows, key):
     return out
 
 
-MARKS = {"gauss": "o-", "nodal": "^--", "frequency": "s:", "gauss1": "d-."}  # the convergence series' lines
+MARKS = {"gauss": "o-", "nodal": "^--", "frequency": "s:", "gauss1": "d-.", "four_point": "v-", "six_point": "x--"}  # the convergence series' lines
 
 
 def report_convergence(rows, out):

@@ -16,7 +16,7 @@
 // The scene's part meshed, discretized and built on one rank, as rkprep and rksolve would.
 inline rk::Model one_rank_model(const rk::Scene& scene, const std::vector<rk::DieSurface>& dies) {
   const rk::VolumeMesh mesh = rk::mesh_cad({scene.geometry.cad, scene.geometry.unit, scene.discretization.spacing});
-  const rk::Discretization disc = rk::discretize(mesh, scene.discretization.gauss_order);
+  const rk::Discretization disc = rk::discretize(mesh, scene.discretization.gauss_order, scene.discretization.cell_rule);
   const auto cell_rank = rk::partition_cells(mesh, disc, 1, "metis-kway");
   return rk::build_model(
       rk::build_subdomains({mesh, disc, cell_rank, 1, scene.discretization.dilation, scene.prep_hash, dies})[0], scene);

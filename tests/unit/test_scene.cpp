@@ -174,6 +174,16 @@ TEST(Scene, NodalIntegrationRefusesReferenceUpdates) {  // its smoothing cells a
   EXPECT_EQ(error_of(kGood, {rk::parse_override("discretization.integration=nodal")}), "");
 }
 
+TEST(Scene, CellRuleIsAGaussCellsKey) {  // nodal integration has no cells' points to place
+  EXPECT_EQ(rk::load_scene(write_scene(kGood), {rk::parse_override("discretization.cell_rule=four_point")})
+                .discretization.cell_rule, "four_point");
+  const auto e = error_of(kGood, {rk::parse_override("discretization.integration=nodal"),
+                                  rk::parse_override("discretization.cell_rule=six_point")});
+  EXPECT_NE(e.find("'discretization.cell_rule' = six_point places the points of Gauss cells"), std::string::npos) << e;
+  EXPECT_NE(error_of(kGood, {rk::parse_override("discretization.cell_rule=five_point")}).find("is not one of"),
+            std::string::npos);
+}
+
 namespace {
 
 // A hot part: specific heat, conduction, a die and the air (no CAD is read by load_scene's checks)
