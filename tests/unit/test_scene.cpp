@@ -214,6 +214,20 @@ TEST(Scene, OneGaussPointPerCellIsWarnedByItsKey) {
   EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(nodal))).empty());
 }
 
+TEST(Scene, AFewerPointRuleWithDiesIsWarnedByItsKey) {  // the die loads it moves were measured
+  const std::string upsetting = rk::test::kSource + "/geometry/upsetting/scene.yaml";
+  EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(replace(kGood, "  spacing: 1.0e-3\n",
+                                                                       "  spacing: 1.0e-3\n  cell_rule: six_point\n"))))
+                  .empty());  // no dies: the Taylor bar's validation holds
+  EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(upsetting)).empty());
+  for (const char* rule : {"four_point", "six_point"}) {
+    const auto w = rk::accuracy_warnings(
+        rk::load_scene(upsetting, {rk::parse_override(std::string("discretization.cell_rule=") + rule)}));
+    ASSERT_EQ(w.size(), 1u) << rule;
+    EXPECT_NE(w[0].find(std::string("discretization.cell_rule = ") + rule + " with dies"), std::string::npos) << w[0];
+  }
+}
+
 TEST(Scene, APlasticPartWithoutFbarIsWarnedByItsKey) {
   const auto none = replace(kGood, "  spacing: 1.0e-3\n", "  spacing: 1.0e-3\n  volumetric: none\n");
   const auto w = rk::accuracy_warnings(rk::load_scene(write_scene(none)));  // j2_linear: it locks
