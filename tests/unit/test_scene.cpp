@@ -212,6 +212,9 @@ TEST(Scene, OneGaussPointPerCellIsWarnedByItsKey) {
   // nodal integration has no Gauss points: the order is not used, so nothing to warn of
   const auto nodal = replace(one, "  gauss_order: 1\n", "  gauss_order: 1\n  integration: nodal\n");
   EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(nodal))).empty());
+  // nor where a hexahedron takes a four- or six-point rule (the order is then a tetrahedron's)
+  const auto four = replace(one, "  gauss_order: 1\n", "  gauss_order: 1\n  cell_rule: four_point\n");
+  EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(four))).empty());
 }
 
 TEST(Scene, AFewerPointRuleWithDiesIsWarnedByItsKey) {  // the die loads it moves were measured
