@@ -97,14 +97,14 @@ def convergence():
     # (time.stable_step), 2.7x fewer steps: what makes the finest level affordable on a small machine;
     # the fourth one Gauss point per cell (the fast setting: 8x fewer points than the default); the fifth
     # and sixth the hexahedra's four- and six-point rules (discretization.cell_rule; not in the smoke run)
+    series = [("gauss", "", [], []), ("nodal", "_nodal", ["discretization.integration=nodal"], []),
+              ("frequency", "_frequency", [], ["time.stable_step=frequency"]),
+              ("gauss1", "_gauss1", ["discretization.gauss_order=1"], [])]
+    if not SMOKE:
+        series += [(rule, f"_{rule}", [f"discretization.cell_rule={rule}"], []) for rule in ("four_point", "six_point")]
     cases = [Case(f"taylor{tag}_h{h}", **taylor(h, end, *solve, *(["output.checkpoint_minutes=10"] if h < 0.4 else []),
-                                                 prep=prep, ranks=2 if h < 0.4 else 1), h=h, series=series)
-             for series, tag, prep, solve in (("gauss", "", [], []), ("nodal", "_nodal", ["discretization.integration=nodal"], []),
-                                              ("frequency", "_frequency", [], ["time.stable_step=frequency"]),
-                                              ("gauss1", "_gauss1", ["discretization.gauss_order=1"], []),
-                                              *(() if SMOKE else (("four_point", "_four_point", ["discretization.cell_rule=four_point"], []),
-                                                                  ("six_point", "_six_point", ["discretization.cell_rule=six_point"], []))))
-             for h in hs]
+                                                 prep=prep, ranks=2 if h < 0.4 else 1), h=h, series=name)
+             for name, tag, prep, solve in series for h in hs]
     for h in ([3.0, 2.5] if SMOKE else spacings("UPSET_H", [2.5, 2.0, 1.25, 0.8])):
         solve = ["time.end=1.1e-3", "time.output_interval=1.1e-3"] if SMOKE else []
         cases.append(Case(f"upsetting_h{h}", **upsetting(h, *solve), h=h))
