@@ -828,15 +828,19 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
         if (other.name == n) throw Error(name + ": key 'output." + key + "': two entries named '" + n + "'");
       return n;
     };
+    auto numbered = [](const char* stem, std::size_t k) {  // (appended: "p" + to_string() trips GCC 12's -Wrestrict)
+      std::string n = stem;
+      return n += std::to_string(k);
+    };
     o.list("track", [&](Section& p) {
       Scene::Output::Track t;
-      t.name = unique_name(p, s.output.track, "track", "p" + std::to_string(s.output.track.size()));
+      t.name = unique_name(p, s.output.track, "track", numbered("p", s.output.track.size()));
       t.point = p.vec3("point", std::nullopt);
       s.output.track.push_back(t);
     });
     o.list("flow_lines", [&](Section& p) {
       Scene::Output::FlowLines f;
-      f.name = unique_name(p, s.output.flow_lines, "flow_lines", "flow_lines" + std::to_string(s.output.flow_lines.size()));
+      f.name = unique_name(p, s.output.flow_lines, "flow_lines", numbered("flow_lines", s.output.flow_lines.size()));
       f.point = p.vec3("point", std::nullopt);
       f.normal = p.vec3("normal", std::nullopt, true);
       f.direction = p.vec3("direction", std::nullopt, true);
