@@ -48,7 +48,10 @@ void print_partition(const nlohmann::json& report) {
               "neighbours");
   for (const auto& r : report["ranks"]) {
     std::string nb;
-    for (const auto& q : r["neighbour_ranks"]) nb += (nb.empty() ? "" : ",") + std::to_string(q.get<int>());
+    for (const auto& q : r["neighbour_ranks"]) {
+      if (!nb.empty()) nb += ',';
+      nb += std::to_string(q.get<int>());
+    }
     std::printf("%6d %9zu %9zu %9zu %9zu %10zu  %s\n", r["rank"].get<int>(), r["cells"].get<std::size_t>(),
                 r["integration_points"].get<std::size_t>(), r["owned_particles"].get<std::size_t>(),
                 r["overlap_particles"].get<std::size_t>(), r["values_exchanged_per_step"].get<std::size_t>(),

@@ -37,6 +37,7 @@
 namespace {
 
 using rk::test::kSource;
+__extension__ typedef __int128 Wide;  // the exact sums to check int64's against (a GCC extension: no -Wpedantic)
 
 TEST(FixedPoint, EveryTermAtTheBoundSumsWithinInt64) {
   for (const std::int64_t terms : {std::int64_t(1), std::int64_t(2), std::int64_t(3), std::int64_t(500),
@@ -46,9 +47,9 @@ TEST(FixedPoint, EveryTermAtTheBoundSumsWithinInt64) {
       const rk::FixedScale scale = rk::FixedScale::for_bound(bound, h);
       for (const double x : {bound, -bound}) {
         const rk::Fixed term = scale.fixed(x);
-        const __int128 sum = __int128(term) * terms;  // every term at the bound, the same sign
-        EXPECT_LE(sum, __int128(std::numeric_limits<rk::Fixed>::max())) << terms << " terms at " << x;
-        EXPECT_GE(sum, __int128(std::numeric_limits<rk::Fixed>::min())) << terms << " terms at " << x;
+        const Wide sum = Wide(term) * terms;  // every term at the bound, the same sign
+        EXPECT_LE(sum, Wide(std::numeric_limits<rk::Fixed>::max())) << terms << " terms at " << x;
+        EXPECT_GE(sum, Wide(std::numeric_limits<rk::Fixed>::min())) << terms << " terms at " << x;
       }
     }
   }
@@ -83,13 +84,13 @@ TEST(FixedPoint, TheForceScaleKeepsATermAtItsBoundWithinTheRowsRange) {
 }
 
 // The worst sum of a step at the headroom step_headroom gives, every term at its bound and of one sign.
-__int128 worst_sum(const rk::ForceTerms& terms, double bound, double contact_bound, int headroom) {
+Wide worst_sum(const rk::ForceTerms& terms, double bound, double contact_bound, int headroom) {
   const rk::FixedScale scale = rk::FixedScale::for_bound(bound, headroom);
-  return __int128(scale.fixed(bound)) * terms.internal + __int128(scale.fixed(contact_bound)) * terms.contact;
+  return Wide(scale.fixed(bound)) * terms.internal + Wide(scale.fixed(contact_bound)) * terms.contact;
 }
 
 TEST(FixedPoint, AStepsHeadroomHoldsItsWorstSum) {
-  const __int128 most = std::numeric_limits<rk::Fixed>::max();
+  const Wide most = std::numeric_limits<rk::Fixed>::max();
   // a resolution's headroom from the points' columns alone (2^10 > 601) and a particle that takes
   // 2 700 terms with the contacts: at a bound just below a power of two they could pass 2^63
   const rk::ForceTerms terms{300, 2400};
