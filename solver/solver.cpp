@@ -3,7 +3,6 @@
 #include "solver.hpp"
 
 #include <algorithm>
-#include <iterator>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -32,6 +31,7 @@
 #include "model.hpp"
 #include "parallel/overlap_exchange.hpp"
 #include "phase_timer.hpp"
+#include "running_extrema.hpp"
 #include "process_memory.hpp"
 #include "rk/internal_force.hpp"
 #include "rk/kinematics.hpp"
@@ -307,14 +307,8 @@ void Simulation::contact() {
 
 // The stable step, the force bound, and what decides the next steps, agreed over the ranks at once.
 void Simulation::time_step() {
-  // the points' largest force bound, in eight running maxima (one chain of maxsd waits on each compare)
-  double most[8];
-  std::fill(std::begin(most), std::end(most), contact_bound_);
-  const std::size_t whole = md_.m / 8 * 8;
-  for (std::size_t g = 0; g < whole; g += 8)
-    for (std::size_t j = 0; j < 8; ++j) most[j] = std::max(most[j], st_.force_bound[g + j]);
-  for (std::size_t g = whole; g < md_.m; ++g) most[0] = std::max(most[0], st_.force_bound[g]);
-  const double bound = *std::max_element(std::begin(most), std::end(most));
+  // the points' largest force bound, and the contact's
+  const double bound = largest_of(md_.m, contact_bound_, [&](std::size_t g) { return st_.force_bound[g]; });
   healthy_ = stress_.ok && std::isfinite(bound);
   // and after a reference update the contact's step, on the new reference's edges: its stiffness keeps to
   // it, the step grows at most step_growth times past it (time_step.hpp, contact/contact_laws.hpp); the

@@ -9,24 +9,9 @@
 #include "parallel/overlap_exchange.hpp"
 #include "rk/kinematics.hpp"
 #include "rk/surface_faces.hpp"
+#include "running_extrema.hpp"
 
 namespace rk {
-
-namespace {
-
-// The least of x[0 .. n) in four running minima (one chain of minsd would wait on each compare); min is
-// exact, so the order does not change the result.
-double least_of(const double* x, std::size_t n) {
-  double least[4];
-  std::fill(std::begin(least), std::end(least), std::numeric_limits<double>::infinity());
-  const std::size_t whole = n / 4 * 4;
-  for (std::size_t s = 0; s < whole; s += 4)
-    for (std::size_t j = 0; j < 4; ++j) least[j] = std::min(least[j], x[s + j]);
-  for (std::size_t s = whole; s < n; ++s) least[0] = std::min(least[0], x[s]);
-  return std::min(std::min(least[0], least[1]), std::min(least[2], least[3]));
-}
-
-}  // namespace
 
 DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<DieSurface>& surfaces, DieContact* previous)
     : dies_(scene.dies), penalty_scale_(scene.penalty_scale_at_cfl()), damping_(scene.contact.damping) {
@@ -221,17 +206,11 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
   // How far any local coefficient moved since the last call: a slave moved at most sum_J |N_J| times that.
   double moved = 0;
   if (u_last_.size() == st.u.size()) {
-    double worst[4] = {0, 0, 0, 0};  // four running maxima (exact: the order does not matter)
-    const std::size_t whole = md.n / 4 * 4;
-    auto d2 = [&](std::size_t I) {
-      double d = 0;
-      for (int i = 0; i < 3; ++i) d += (st.u[3 * I + i] - u_last_[3 * I + i]) * (st.u[3 * I + i] - u_last_[3 * I + i]);
-      return d;
-    };
-    for (std::size_t I = 0; I < whole; I += 4)
-      for (std::size_t j = 0; j < 4; ++j) worst[j] = std::max(worst[j], d2(I + j));
-    for (std::size_t I = whole; I < md.n; ++I) worst[0] = std::max(worst[0], d2(I));
-    moved = std::sqrt(std::max(std::max(worst[0], worst[1]), std::max(worst[2], worst[3])));
+    moved = std::sqrt(largest_of(md.n, 0.0, [&](std::size_t I) {
+      double d2 = 0;
+      for (int i = 0; i < 3; ++i) d2 += (st.u[3 * I + i] - u_last_[3 * I + i]) * (st.u[3 * I + i] - u_last_[3 * I + i]);
+      return d2;
+    }));
   }
   u_last_ = st.u;  // sized at the first call
   moved_ = moved;
@@ -324,7 +303,8 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
         (s < particles_.size() ? tot.contacts : tot.point_contacts) += 1;
         active_.push_back(a);
       }
-      block_floor = least_of(clearance + s0, s1 - s0);  // the block's new floor
+      const double* block = clearance + s0;  // its new floor
+      block_floor = least_of(s1 - s0, std::numeric_limits<double>::infinity(), [&](std::size_t j) { return block[j]; });
     }
   }
   if (shear_) face_friction(md, st, t, dt, dt_min, largest);
