@@ -80,58 +80,83 @@ inline Lane strided_lanes(const double* x) {
 }
 
 // v[i] = component i of kLanes consecutive points of `stride` values at x (strided_lanes of each
-// component), and back: with 4 lanes the points' rows are read and written as vectors and transposed
-// 4x4 in the registers, instead of a lane insert or extract for every value; with 8 or 2 lanes
-// component by component.
-#if defined(__AVX__) && !defined(__AVX512F__)
+// component), and back: with AVX the points' rows are read and written as vectors and transposed 4x4 in
+// the registers, four points at a time (with 8 lanes, two fours joined into each register), instead of a
+// lane insert or extract for every value; with 2 lanes component by component.
+#if defined(__AVX__)
 inline void transpose4(__m256d& a, __m256d& b, __m256d& c, __m256d& d) {
   const __m256d ab_lo = _mm256_unpacklo_pd(a, b), ab_hi = _mm256_unpackhi_pd(a, b);  // a0 b0 a2 b2, a1 b1 a3 b3
   const __m256d cd_lo = _mm256_unpacklo_pd(c, d), cd_hi = _mm256_unpackhi_pd(c, d);
   a = _mm256_permute2f128_pd(ab_lo, cd_lo, 0x20), b = _mm256_permute2f128_pd(ab_hi, cd_hi, 0x20);
   c = _mm256_permute2f128_pd(ab_lo, cd_lo, 0x31), d = _mm256_permute2f128_pd(ab_hi, cd_hi, 0x31);
 }
-#endif
+// the four points at x to v[i] = their component i
 template <int stride>
-inline void strided_to_lanes(const double* x, Lane* v) {
-#if defined(__AVX__) && !defined(__AVX512F__)
+inline void four_to_columns(const double* x, __m256d* v) {
   static_assert(stride % 4 == 1 || stride % 4 == 2);
   for (int j = 0; j + 4 <= stride; j += 4) {
     __m256d a = _mm256_loadu_pd(x + j), b = _mm256_loadu_pd(x + stride + j);
     __m256d c = _mm256_loadu_pd(x + 2 * stride + j), d = _mm256_loadu_pd(x + 3 * stride + j);
     transpose4(a, b, c, d);
-    v[j] = (Lane)a, v[j + 1] = (Lane)b, v[j + 2] = (Lane)c, v[j + 3] = (Lane)d;
+    v[j] = a, v[j + 1] = b, v[j + 2] = c, v[j + 3] = d;
   }
   constexpr int last = stride - stride % 4;
   if constexpr (stride % 4 == 1) {
-    v[last] = strided_lanes<stride>(x + last);
+    v[last] = _mm256_set_pd(x[3 * stride + last], x[2 * stride + last], x[stride + last], x[last]);
   } else {  // the last two components: a pair a point
     const __m256d even = _mm256_loadu2_m128d(x + 2 * stride + last, x + last);  // points 0 and 2
     const __m256d odd = _mm256_loadu2_m128d(x + 3 * stride + last, x + stride + last);
-    v[last] = (Lane)_mm256_unpacklo_pd(even, odd), v[last + 1] = (Lane)_mm256_unpackhi_pd(even, odd);
+    v[last] = _mm256_unpacklo_pd(even, odd), v[last + 1] = _mm256_unpackhi_pd(even, odd);
   }
-#else
-  for (int i = 0; i < stride; ++i) v[i] = strided_lanes<stride>(x + i);
-#endif
 }
+// and back
 template <int stride>
-inline void lanes_to_strided(const Lane* v, double* x) {
-#if defined(__AVX__) && !defined(__AVX512F__)
+inline void columns_to_four(const __m256d* v, double* x) {
   static_assert(stride % 4 == 1 || stride % 4 == 2);
   for (int j = 0; j + 4 <= stride; j += 4) {
-    __m256d a = (__m256d)v[j], b = (__m256d)v[j + 1], c = (__m256d)v[j + 2], d = (__m256d)v[j + 3];
+    __m256d a = v[j], b = v[j + 1], c = v[j + 2], d = v[j + 3];
     transpose4(a, b, c, d);
     _mm256_storeu_pd(x + j, a), _mm256_storeu_pd(x + stride + j, b);
     _mm256_storeu_pd(x + 2 * stride + j, c), _mm256_storeu_pd(x + 3 * stride + j, d);
   }
   constexpr int last = stride - stride % 4;
   if constexpr (stride % 4 == 1) {
-    for (int l = 0; l < kLanes; ++l) x[l * stride + last] = v[last][l];
+    const __m128d lo = _mm256_castpd256_pd128(v[last]), hi = _mm256_extractf128_pd(v[last], 1);
+    _mm_storel_pd(x + last, lo), _mm_storeh_pd(x + stride + last, lo);
+    _mm_storel_pd(x + 2 * stride + last, hi), _mm_storeh_pd(x + 3 * stride + last, hi);
   } else {
-    const __m256d even = _mm256_unpacklo_pd((__m256d)v[last], (__m256d)v[last + 1]);  // points 0 and 2
-    const __m256d odd = _mm256_unpackhi_pd((__m256d)v[last], (__m256d)v[last + 1]);
+    const __m256d even = _mm256_unpacklo_pd(v[last], v[last + 1]);  // points 0 and 2
+    const __m256d odd = _mm256_unpackhi_pd(v[last], v[last + 1]);
     _mm256_storeu2_m128d(x + 2 * stride + last, x + last, even);
     _mm256_storeu2_m128d(x + 3 * stride + last, x + stride + last, odd);
   }
+}
+#endif
+template <int stride>
+inline void strided_to_lanes(const double* x, Lane* v) {
+#if defined(__AVX512F__)
+  __m256d first[stride], second[stride];
+  four_to_columns<stride>(x, first), four_to_columns<stride>(x + 4 * stride, second);
+  for (int i = 0; i < stride; ++i) v[i] = __builtin_shufflevector(first[i], second[i], 0, 1, 2, 3, 4, 5, 6, 7);
+#elif defined(__AVX__)
+  __m256d c[stride];
+  four_to_columns<stride>(x, c);
+  for (int i = 0; i < stride; ++i) v[i] = (Lane)c[i];
+#else
+  for (int i = 0; i < stride; ++i) v[i] = strided_lanes<stride>(x + i);
+#endif
+}
+template <int stride>
+inline void lanes_to_strided(const Lane* v, double* x) {
+#if defined(__AVX512F__)
+  __m256d first[stride], second[stride];
+  for (int i = 0; i < stride; ++i)
+    first[i] = __builtin_shufflevector(v[i], v[i], 0, 1, 2, 3), second[i] = __builtin_shufflevector(v[i], v[i], 4, 5, 6, 7);
+  columns_to_four<stride>(first, x), columns_to_four<stride>(second, x + 4 * stride);
+#elif defined(__AVX__)
+  __m256d c[stride];
+  for (int i = 0; i < stride; ++i) c[i] = (__m256d)v[i];
+  columns_to_four<stride>(c, x);
 #else
   for (int l = 0; l < kLanes; ++l)
     for (int i = 0; i < stride; ++i) x[l * stride + i] = v[i][l];
