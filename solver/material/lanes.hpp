@@ -54,12 +54,36 @@ inline bool any(LaneMask m) {
 #endif
 }
 
+// The lanes below n true, the rest false.
+inline LaneMask first_lanes(int n) {
+  static const LaneMask index = [] {
+    LaneMask m{};
+    for (int l = 0; l < kLanes; ++l) m[l] = l;
+    return m;
+  }();
+  return index < (LaneMask{} + n);
+}
+
 // kLanes consecutive values x[0 .. kLanes) across the lanes: one vector load (a lane written one at a
 // time through memory and then read as a vector stalls its load until the writes land).
 inline Lane load_lanes(const double* x) {
   Lane v;
   __builtin_memcpy(&v, x, sizeof v);
   return v;
+}
+// The first n of them (0 < n <= kLanes), the other lanes 0: a masked load, nothing past x[n - 1] read.
+inline Lane load_lanes(const double* x, int n) {
+  if (n == kLanes) return load_lanes(x);
+#if defined(__AVX512F__)
+  return (Lane)_mm512_maskz_loadu_pd(__mmask8((1u << n) - 1), x);
+#elif defined(__AVX__)
+  const __m256i lane = _mm256_set_epi64x(3, 2, 1, 0);
+  return (Lane)_mm256_maskload_pd(x, _mm256_cmpgt_epi64(_mm256_set1_epi64x(n), lane));
+#else
+  Lane v{};
+  for (int l = 0; l < n; ++l) v[l] = x[l];
+  return v;
+#endif
 }
 // x[0], x[stride], .. x[(kLanes - 1) stride] across the lanes, built in the registers (for the same reason;
 // a gather instruction measured slower): component i of kLanes consecutive points of `stride` values.
@@ -79,10 +103,11 @@ inline Lane strided_lanes(const double* x) {
 #endif
 }
 
-// v[i] = component i of kLanes consecutive points of `stride` values at x (strided_lanes of each
-// component), and back: with AVX the points' rows are read and written as vectors and transposed 4x4 in
-// the registers, four points at a time (with 8 lanes, two fours joined into each register), instead of a
-// lane insert or extract for every value; with 2 lanes component by component.
+// v[i] = component i of the n <= kLanes consecutive points of `stride` values at x (strided_lanes of
+// each component; the lanes past n 0), and back (nothing past the n points' rows read or written): with
+// AVX the points' rows are read and written as vectors and transposed 4x4 in the registers, four points
+// at a time (with 8 lanes, two fours joined into each register), instead of a lane insert or extract for
+// every value; with 2 lanes component by component.
 #if defined(__AVX__)
 inline void transpose4(__m256d& a, __m256d& b, __m256d& c, __m256d& d) {
   const __m256d ab_lo = _mm256_unpacklo_pd(a, b), ab_hi = _mm256_unpackhi_pd(a, b);  // a0 b0 a2 b2, a1 b1 a3 b3
@@ -90,80 +115,110 @@ inline void transpose4(__m256d& a, __m256d& b, __m256d& c, __m256d& d) {
   a = _mm256_permute2f128_pd(ab_lo, cd_lo, 0x20), b = _mm256_permute2f128_pd(ab_hi, cd_hi, 0x20);
   c = _mm256_permute2f128_pd(ab_lo, cd_lo, 0x31), d = _mm256_permute2f128_pd(ab_hi, cd_hi, 0x31);
 }
-// the four points at x to v[i] = their component i
+// the first n <= 4 of the four points at x to v[i] = their component i (a missing point's 0)
 template <int stride>
-inline void four_to_columns(const double* x, __m256d* v) {
+inline void four_to_columns(const double* x, __m256d* v, int n) {
   static_assert(stride % 4 == 1 || stride % 4 == 2);
+  const __m256d zero = _mm256_setzero_pd();
+  const __m128d zero2 = _mm_setzero_pd();
+  auto row = [&](int l, int j) { return l < n ? _mm256_loadu_pd(x + l * stride + j) : zero; };
   for (int j = 0; j + 4 <= stride; j += 4) {
-    __m256d a = _mm256_loadu_pd(x + j), b = _mm256_loadu_pd(x + stride + j);
-    __m256d c = _mm256_loadu_pd(x + 2 * stride + j), d = _mm256_loadu_pd(x + 3 * stride + j);
+    __m256d a = row(0, j), b = row(1, j), c = row(2, j), d = row(3, j);
     transpose4(a, b, c, d);
     v[j] = a, v[j + 1] = b, v[j + 2] = c, v[j + 3] = d;
   }
   constexpr int last = stride - stride % 4;
+  auto at = [&](int l) { return l < n ? x[l * stride + last] : 0.0; };
   if constexpr (stride % 4 == 1) {
-    v[last] = _mm256_set_pd(x[3 * stride + last], x[2 * stride + last], x[stride + last], x[last]);
+    v[last] = _mm256_set_pd(at(3), at(2), at(1), at(0));
   } else {  // the last two components: a pair a point
-    const __m256d even = _mm256_loadu2_m128d(x + 2 * stride + last, x + last);  // points 0 and 2
-    const __m256d odd = _mm256_loadu2_m128d(x + 3 * stride + last, x + stride + last);
+    auto pair = [&](int l) { return l < n ? _mm_loadu_pd(x + l * stride + last) : zero2; };
+    const __m256d even = _mm256_set_m128d(pair(2), pair(0)), odd = _mm256_set_m128d(pair(3), pair(1));
     v[last] = _mm256_unpacklo_pd(even, odd), v[last + 1] = _mm256_unpackhi_pd(even, odd);
   }
 }
-// and back
+// and back, the first n <= 4 points
 template <int stride>
-inline void columns_to_four(const __m256d* v, double* x) {
+inline void columns_to_four(const __m256d* v, double* x, int n) {
   static_assert(stride % 4 == 1 || stride % 4 == 2);
   for (int j = 0; j + 4 <= stride; j += 4) {
-    __m256d a = v[j], b = v[j + 1], c = v[j + 2], d = v[j + 3];
-    transpose4(a, b, c, d);
-    _mm256_storeu_pd(x + j, a), _mm256_storeu_pd(x + stride + j, b);
-    _mm256_storeu_pd(x + 2 * stride + j, c), _mm256_storeu_pd(x + 3 * stride + j, d);
+    __m256d r[4] = {v[j], v[j + 1], v[j + 2], v[j + 3]};
+    transpose4(r[0], r[1], r[2], r[3]);
+    for (int l = 0; l < 4; ++l)
+      if (l < n) _mm256_storeu_pd(x + l * stride + j, r[l]);
   }
   constexpr int last = stride - stride % 4;
   if constexpr (stride % 4 == 1) {
     const __m128d lo = _mm256_castpd256_pd128(v[last]), hi = _mm256_extractf128_pd(v[last], 1);
-    _mm_storel_pd(x + last, lo), _mm_storeh_pd(x + stride + last, lo);
-    _mm_storel_pd(x + 2 * stride + last, hi), _mm_storeh_pd(x + 3 * stride + last, hi);
+    if (n > 0) _mm_storel_pd(x + last, lo);
+    if (n > 1) _mm_storeh_pd(x + stride + last, lo);
+    if (n > 2) _mm_storel_pd(x + 2 * stride + last, hi);
+    if (n > 3) _mm_storeh_pd(x + 3 * stride + last, hi);
   } else {
     const __m256d even = _mm256_unpacklo_pd(v[last], v[last + 1]);  // points 0 and 2
     const __m256d odd = _mm256_unpackhi_pd(v[last], v[last + 1]);
-    _mm256_storeu2_m128d(x + 2 * stride + last, x + last, even);
-    _mm256_storeu2_m128d(x + 3 * stride + last, x + stride + last, odd);
+    if (n > 0) _mm_storeu_pd(x + last, _mm256_castpd256_pd128(even));
+    if (n > 1) _mm_storeu_pd(x + stride + last, _mm256_castpd256_pd128(odd));
+    if (n > 2) _mm_storeu_pd(x + 2 * stride + last, _mm256_extractf128_pd(even, 1));
+    if (n > 3) _mm_storeu_pd(x + 3 * stride + last, _mm256_extractf128_pd(odd, 1));
   }
 }
 #endif
 template <int stride>
-inline void strided_to_lanes(const double* x, Lane* v) {
+inline void strided_to_lanes(const double* x, Lane* v, int n = kLanes) {
 #if defined(__AVX512F__)
   __m256d first[stride], second[stride];
-  four_to_columns<stride>(x, first), four_to_columns<stride>(x + 4 * stride, second);
+  four_to_columns<stride>(x, first, n < 4 ? n : 4);
+  if (n > 4) four_to_columns<stride>(x + 4 * stride, second, n - 4);
+  else
+    for (int i = 0; i < stride; ++i) second[i] = _mm256_setzero_pd();
   for (int i = 0; i < stride; ++i) v[i] = __builtin_shufflevector(first[i], second[i], 0, 1, 2, 3, 4, 5, 6, 7);
 #elif defined(__AVX__)
   __m256d c[stride];
-  four_to_columns<stride>(x, c);
+  four_to_columns<stride>(x, c, n);
   for (int i = 0; i < stride; ++i) v[i] = (Lane)c[i];
 #else
-  for (int i = 0; i < stride; ++i) v[i] = strided_lanes<stride>(x + i);
+  for (int i = 0; i < stride; ++i) {
+    if (n == kLanes) {
+      v[i] = strided_lanes<stride>(x + i);
+      continue;
+    }
+    v[i] = Lane{};
+    for (int l = 0; l < n; ++l) v[i][l] = x[l * stride + i];
+  }
 #endif
 }
 template <int stride>
-inline void lanes_to_strided(const Lane* v, double* x) {
+inline void lanes_to_strided(const Lane* v, double* x, int n = kLanes) {
 #if defined(__AVX512F__)
   __m256d first[stride], second[stride];
   for (int i = 0; i < stride; ++i)
     first[i] = __builtin_shufflevector(v[i], v[i], 0, 1, 2, 3), second[i] = __builtin_shufflevector(v[i], v[i], 4, 5, 6, 7);
-  columns_to_four<stride>(first, x), columns_to_four<stride>(second, x + 4 * stride);
+  columns_to_four<stride>(first, x, n < 4 ? n : 4);
+  if (n > 4) columns_to_four<stride>(second, x + 4 * stride, n - 4);
 #elif defined(__AVX__)
   __m256d c[stride];
   for (int i = 0; i < stride; ++i) c[i] = (__m256d)v[i];
-  columns_to_four<stride>(c, x);
+  columns_to_four<stride>(c, x, n);
 #else
-  for (int l = 0; l < kLanes; ++l)
+  for (int l = 0; l < n; ++l)
     for (int i = 0; i < stride; ++i) x[l * stride + i] = v[i][l];
 #endif
 }
 // x[0 .. kLanes) = v: one vector store
 inline void store_lanes(double* x, Lane v) { __builtin_memcpy(x, &v, sizeof v); }
+// x[0 .. n) = the first n lanes of v: a masked store, nothing past x[n - 1] written
+inline void store_lanes(double* x, Lane v, int n) {
+  if (n == kLanes) return store_lanes(x, v);
+#if defined(__AVX512F__)
+  _mm512_mask_storeu_pd(x, __mmask8((1u << n) - 1), (__m512d)v);
+#elif defined(__AVX__)
+  const __m256i lane = _mm256_set_epi64x(3, 2, 1, 0);
+  _mm256_maskstore_pd(x, _mm256_cmpgt_epi64(_mm256_set1_epi64x(n), lane), (__m256d)v);
+#else
+  for (int l = 0; l < n; ++l) x[l] = v[l];
+#endif
+}
 
 // r^(1/3) for r near 1 (the F-bar ratio Jbar/J): two Newton steps from 1 + e/3 - e^2/9, e = r - 1,
 // reach round-off for |e| <= 0.1 (initial error 5e^3/81, squared by each step); lanes farther out

@@ -12,26 +12,27 @@
 namespace rk {
 namespace {
 
-// Up to kLanes points of one update, one a lane: `whole` where they are kLanes consecutive points, whose
-// values are then read across the lanes as vectors.
+// Up to kLanes points of one update, one a lane: `consecutive` where they are n consecutive points, whose
+// values are then read and written across the lanes as vectors (the lanes past n at rest).
 struct Batch {
   const std::size_t* point;
   int n;
-  bool whole;
+  bool consecutive;
 };
 
 // The k-th batch of the points pts[0 .. count).
 Batch batch_of(const std::size_t* pts, std::size_t count, std::size_t k) {
-  Batch bt{pts + k * kLanes, int(std::min<std::size_t>(kLanes, count - k * kLanes)), false};
-  bt.whole = bt.n == kLanes;
-  for (int l = 1; l < bt.n && bt.whole; ++l) bt.whole = bt.point[l] == bt.point[0] + std::size_t(l);
+  Batch bt{pts + k * kLanes, int(std::min<std::size_t>(kLanes, count - k * kLanes)), true};
+  for (int l = 1; l < bt.n && bt.consecutive; ++l) bt.consecutive = bt.point[l] == bt.point[0] + std::size_t(l);
   return bt;
 }
 
 // F of the batch's points across the lanes (the rest of the lanes the identity).
 void lanes_of_F(const State& st, const Batch& bt, Mat& F) {
-  if (bt.whole) {
-    strided_to_lanes<9>(&st.F[9 * bt.point[0]], F.v);
+  if (bt.consecutive) {
+    strided_to_lanes<9>(&st.F[9 * bt.point[0]], F.v, bt.n);
+    if (bt.n < kLanes)
+      for (int i = 0; i < 9; i += 4) F.v[i] = select(first_lanes(bt.n), F.v[i], splat(1));
     return;
   }
   for (int l = 0; l < kLanes; ++l)
@@ -56,8 +57,8 @@ void load(const Model& md, const State& st, std::size_t c, const Batch& bt, cons
   Lane r = splat(1);  // Jbar / J (the lanes at rest: 1)
   const std::size_t g = bt.point[0];
   const int n = bt.n;
-  if (md.fbar && bt.whole) {
-    r = st.cell_J[c] / load_lanes(&st.J[g]);
+  if (md.fbar && bt.consecutive) {
+    r = st.cell_J[c] / (bt.n == kLanes ? load_lanes(&st.J[g]) : select(first_lanes(n), load_lanes(&st.J[g], n), splat(1)));
   } else if (md.fbar) {
     Lane J = splat(1);
     LaneMask used{};
@@ -67,17 +68,20 @@ void load(const Model& md, const State& st, std::size_t c, const Batch& bt, cons
   Lane ratio = cube_root_near_one(r);
   // the thermal stretch taken out: F_mech = F / stretch(T) (1 + alpha (T - T0), or from rho(T)). C_p^-1 is
   // pushed forward at a reference update with the whole F, so the total stretch is right here.
-  if (md.thermal_strain() && bt.whole && md.density_table.empty()) {
-    stretch = md.linear_thermal_stretch(load_lanes(&st.temperature[g]));
+  if (md.thermal_strain() && bt.consecutive && md.density_table.empty()) {
+    stretch = md.linear_thermal_stretch(load_lanes(&st.temperature[g], n));
+    if (n < kLanes) stretch = select(first_lanes(n), stretch, splat(1));  // (the lanes at rest: unstretched)
     ratio /= stretch;
   } else if (md.thermal_strain()) {
     for (int l = 0; l < n; ++l) stretch[l] = md.thermal_stretch(st.temperature[bt.point[l]]), ratio[l] /= stretch[l];
   }
-  if (bt.whole) {  // (a lane written one at a time and then read as a vector stalls: docs/decisions.md)
-    strided_to_lanes<6>(&st.cp_inv[6 * g], b.cp_inv.v);
-    b.ep = load_lanes(&st.ep[g]);
-    if (!st.temperature.empty()) b.T = load_lanes(&st.temperature[g]);
-    if (!st.plastic_rate.empty()) b.rate_last = load_lanes(&st.plastic_rate[g]);
+  if (bt.consecutive) {  // (a lane written one at a time and then read as a vector stalls: docs/decisions.md)
+    strided_to_lanes<6>(&st.cp_inv[6 * g], b.cp_inv.v, n);
+    if (n < kLanes)
+      for (int i = 0; i < 3; ++i) b.cp_inv.v[i] = select(first_lanes(n), b.cp_inv.v[i], splat(1));
+    b.ep = load_lanes(&st.ep[g], n);
+    if (!st.temperature.empty()) b.T = load_lanes(&st.temperature[g], n);
+    if (!st.plastic_rate.empty()) b.rate_last = load_lanes(&st.plastic_rate[g], n);
   } else {
     for (int l = 0; l < kLanes; ++l) {
       if (l >= n) {
@@ -104,9 +108,9 @@ void first_piola(const Model& md, State& st, const Batch& bt, double pc, const M
   const std::size_t g = bt.point[0];
   const int n = bt.n;
   Lane J{}, q{};  // the volume ratio from t = 0 and the bulk viscosity's pressure (the rest of the lanes the last point's)
-  if (bt.whole) {  // (as State::total_J)
-    J = st.J_ref.empty() ? load_lanes(&st.J[g]) : load_lanes(&st.J[g]) * load_lanes(&st.J_ref[g]);
-    if (!st.q.empty()) q = load_lanes(&st.q[g]);
+  if (bt.consecutive) {  // (as State::total_J)
+    J = st.J_ref.empty() ? load_lanes(&st.J[g], n) : load_lanes(&st.J[g], n) * load_lanes(&st.J_ref[g], n);
+    if (!st.q.empty()) q = load_lanes(&st.q[g], n);
   } else {
     for (int l = 0; l < kLanes; ++l) {
       const std::size_t p = bt.point[std::min(l, n - 1)];
@@ -127,13 +131,13 @@ void first_piola(const Model& md, State& st, const Batch& bt, double pc, const M
       norm2 += P[3 * i + j] * P[3 * i + j];
     }
   Lane w{}, dN_max{};
-  if (bt.whole) w = load_lanes(&md.weight[g]), dN_max = load_lanes(&md.dN_max[g]);
+  if (bt.consecutive) w = load_lanes(&md.weight[g], n), dN_max = load_lanes(&md.dN_max[g], n);
   else
     for (int l = 0; l < n; ++l) w[l] = md.weight[bt.point[l]], dN_max[l] = md.dN_max[bt.point[l]];
   const Lane bound = w * sqrt(norm2) * dN_max;
-  if (bt.whole) {
-    lanes_to_strided<9>(P, &st.P[9 * g]);
-    store_lanes(&st.force_bound[g], bound);
+  if (bt.consecutive) {
+    lanes_to_strided<9>(P, &st.P[9 * g], n);
+    store_lanes(&st.force_bound[g], bound, n);
     return;
   }
   for (int l = 0; l < n; ++l) {
@@ -247,29 +251,29 @@ StressHealth update_points(const Model& md, State& st, const PressureBound& boun
       J2Batch& b = batch[k];
       j2_update(law, b);
       Lane weight{};
-      if (bt.whole) weight = load_lanes(&md.weight[bt.point[0]]);
+      if (bt.consecutive) weight = load_lanes(&md.weight[bt.point[0]], n);
       else
         for (int l = 0; l < n; ++l) weight[l] = md.weight[bt.point[l]];
       const Lane weighted_mean = weight * (b.tau.v[0] + b.tau.v[1] + b.tau.v[2]) / 3;  // w tr(tau) / 3, for the cell's pressure
-      // a whole batch, where nothing below needs the point's last state lane by lane (the damage's
-      // increment), is stored as vectors (its plastic rate from the last ep, the last stress's trace for
+      // a batch of consecutive points, where nothing below needs the point's last state lane by lane (the
+      // damage's increment), is stored as vectors (its plastic rate from the last ep, the last stress's trace for
       // the thermal strain's work taken first); C_p^-1 only where it changed
-      const bool as_vectors = bt.whole && st.damage.empty();
+      const bool as_vectors = bt.consecutive && st.damage.empty();
       Lane trace_last{}, thermal_log{};  // with a thermal strain: ln(stretch / its last), across the lanes
       if (as_vectors) {
         const std::size_t g = bt.point[0];
         if (!st.stretch_last.empty()) {
           for (int l = 0; l < n; ++l) trace_last[l] = st.tau[6 * (g + l)] + st.tau[6 * (g + l) + 1] + st.tau[6 * (g + l) + 2];
-          const Lane last = load_lanes(&st.stretch_last[g]);
+          const Lane last = load_lanes(&st.stretch_last[g], n);
           thermal_log = log(select(last > 0, stretch[k] / last, splat(1)));
         }
         if (!st.plastic_rate.empty())
-          store_lanes(&st.plastic_rate[g], b.dt > 0 ? (b.ep - load_lanes(&st.ep[g])) / b.dt : Lane{});
-        lanes_to_strided<6>(b.tau.v, &st.tau[6 * g]);
-        if (any(b.plastic)) lanes_to_strided<6>(b.cp_inv.v, &st.cp_inv[6 * g]);
-        store_lanes(&st.ep[g], b.ep);
-        store_lanes(&st.psi[g], b.psi);
-        store_lanes(&st.wp[g], load_lanes(&st.wp[g]) + b.dissipation);
+          store_lanes(&st.plastic_rate[g], b.dt > 0 ? (b.ep - load_lanes(&st.ep[g], n)) / b.dt : Lane{}, n);
+        lanes_to_strided<6>(b.tau.v, &st.tau[6 * g], n);
+        if (any(b.plastic)) lanes_to_strided<6>(b.cp_inv.v, &st.cp_inv[6 * g], n);
+        store_lanes(&st.ep[g], b.ep, n);
+        store_lanes(&st.psi[g], b.psi, n);
+        store_lanes(&st.wp[g], load_lanes(&st.wp[g], n) + b.dissipation, n);
       }
       for (int l = 0; l < n; ++l) {
         const std::size_t p = bt.point[l];

@@ -210,23 +210,37 @@ TEST(J2, CubeRootNearOneMatchesLibm) {
   EXPECT_EQ(rk::cube_root_near_one(rk::splat(1.0))[0], 1.0);
 }
 
-// A batch's values read from and written to the points' rows (lanes.hpp's transposes): every
-// component of every point to its lane and back, and nothing outside the rows written.
+// A batch's values read from and written to the points' rows (lanes.hpp's transposes and masked loads
+// and stores): every component of each of the batch's n points to its lane and back, the lanes past n
+// read as 0, and nothing outside the n points' rows written; n from one point to kLanes (a cell of
+// four or six points fills part of a batch).
 template <int stride>
-void check_strided_round_trip() {
-  double x[stride * rk::kLanes + 2], y[stride * rk::kLanes + 2];
-  for (int k = 0; k < stride * rk::kLanes + 2; ++k) x[k] = 1.0 + k, y[k] = -1.0;
+void check_strided_round_trip(int n) {
+  constexpr int size = stride * rk::kLanes + 2;
+  double x[size], y[size];
+  for (int k = 0; k < size; ++k) x[k] = 1.0 + k, y[k] = -1.0;
   rk::Lane v[stride];
-  rk::strided_to_lanes<stride>(x + 1, v);
+  rk::strided_to_lanes<stride>(x + 1, v, n);
   for (int i = 0; i < stride; ++i)
-    for (int l = 0; l < rk::kLanes; ++l) EXPECT_EQ(v[i][l], x[1 + l * stride + i]) << "component " << i << ", lane " << l;
-  rk::lanes_to_strided<stride>(v, y + 1);
-  for (int k = 0; k < stride * rk::kLanes + 2; ++k)
-    EXPECT_EQ(y[k], k == 0 || k == stride * rk::kLanes + 1 ? -1.0 : x[k]) << "stride " << stride << ", value " << k;
+    for (int l = 0; l < rk::kLanes; ++l)
+      EXPECT_EQ(v[i][l], l < n ? x[1 + l * stride + i] : 0.0) << "n " << n << ", component " << i << ", lane " << l;
+  rk::lanes_to_strided<stride>(v, y + 1, n);
+  for (int k = 0; k < size; ++k)
+    EXPECT_EQ(y[k], k >= 1 && k <= n * stride ? x[k] : -1.0) << "stride " << stride << ", n " << n << ", value " << k;
+  double z[rk::kLanes + 2];
+  for (int k = 0; k < rk::kLanes + 2; ++k) z[k] = -1.0;
+  const rk::Lane a = rk::load_lanes(x + 1, n);
+  rk::store_lanes(z + 1, a, n);
+  for (int l = 0; l < rk::kLanes; ++l) EXPECT_EQ(a[l], l < n ? x[1 + l] : 0.0) << "n " << n << ", lane " << l;
+  for (int k = 0; k < rk::kLanes + 2; ++k) EXPECT_EQ(z[k], k >= 1 && k <= n ? x[k] : -1.0) << "n " << n << ", value " << k;
+  const rk::LaneMask first = rk::first_lanes(n);
+  for (int l = 0; l < rk::kLanes; ++l) EXPECT_EQ(first[l], l < n ? -1 : 0) << "n " << n << ", lane " << l;
 }
 TEST(J2, StridedLanesRoundTrip) {
-  check_strided_round_trip<6>();  // tau, C_p^-1
-  check_strided_round_trip<9>();  // F, P
+  for (int n = 1; n <= rk::kLanes; ++n) {
+    check_strided_round_trip<6>(n);  // tau, C_p^-1
+    check_strided_round_trip<9>(n);  // F, P
+  }
 }
 
 // e^x and ln x across the lanes (lanes.hpp) against libm, 2^20 samples each over the rate-dependent
