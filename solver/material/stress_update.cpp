@@ -107,7 +107,7 @@ void first_piola(const Model& md, State& st, const Batch& bt, double pc, const M
   Mat cof;
   const std::size_t g = bt.point[0];
   const int n = bt.n;
-  Lane J{}, q{};  // the volume ratio from t = 0 and the bulk viscosity's pressure (the rest of the lanes the last point's)
+  Lane J{}, q{};  // the volume ratio from t = 0 and the bulk viscosity's pressure (the rest of the lanes 0, or the last point's)
   if (bt.consecutive) {  // (as State::total_J)
     J = st.J_ref.empty() ? load_lanes(&st.J[g], n) : load_lanes(&st.J[g], n) * load_lanes(&st.J_ref[g], n);
     if (!st.q.empty()) q = load_lanes(&st.q[g], n);
