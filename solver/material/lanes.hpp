@@ -63,6 +63,8 @@ inline LaneMask first_lanes(int n) {
   }();
   return index < (LaneMask{} + n);
 }
+// v with its lanes from n on set to `rest` (a partial batch's lanes at rest; v itself where n = kLanes)
+inline Lane rest_past(Lane v, int n, double rest) { return n == kLanes ? v : select(first_lanes(n), v, splat(rest)); }
 
 // kLanes consecutive values x[0 .. kLanes) across the lanes: one vector load (a lane written one at a
 // time through memory and then read as a vector stalls its load until the writes land).

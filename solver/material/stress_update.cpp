@@ -31,8 +31,7 @@ Batch batch_of(const std::size_t* pts, std::size_t count, std::size_t k) {
 void lanes_of_F(const State& st, const Batch& bt, Mat& F) {
   if (bt.consecutive) {
     strided_to_lanes<9>(&st.F[9 * bt.point[0]], F.v, bt.n);
-    if (bt.n < kLanes)
-      for (int i = 0; i < 9; i += 4) F.v[i] = select(first_lanes(bt.n), F.v[i], splat(1));
+    for (int i = 0; i < 9; i += 4) F.v[i] = rest_past(F.v[i], bt.n, 1);
     return;
   }
   for (int l = 0; l < kLanes; ++l)
@@ -58,7 +57,7 @@ void load(const Model& md, const State& st, std::size_t c, const Batch& bt, cons
   const std::size_t g = bt.point[0];
   const int n = bt.n;
   if (md.fbar && bt.consecutive) {
-    r = st.cell_J[c] / (bt.n == kLanes ? load_lanes(&st.J[g]) : select(first_lanes(n), load_lanes(&st.J[g], n), splat(1)));
+    r = st.cell_J[c] / rest_past(load_lanes(&st.J[g], n), n, 1);
   } else if (md.fbar) {
     Lane J = splat(1);
     LaneMask used{};
@@ -70,15 +69,14 @@ void load(const Model& md, const State& st, std::size_t c, const Batch& bt, cons
   // pushed forward at a reference update with the whole F, so the total stretch is right here.
   if (md.thermal_strain() && bt.consecutive && md.density_table.empty()) {
     stretch = md.linear_thermal_stretch(load_lanes(&st.temperature[g], n));
-    if (n < kLanes) stretch = select(first_lanes(n), stretch, splat(1));  // (the lanes at rest: unstretched)
+    stretch = rest_past(stretch, n, 1);  // (the lanes at rest: unstretched)
     ratio /= stretch;
   } else if (md.thermal_strain()) {
     for (int l = 0; l < n; ++l) stretch[l] = md.thermal_stretch(st.temperature[bt.point[l]]), ratio[l] /= stretch[l];
   }
   if (bt.consecutive) {  // (a lane written one at a time and then read as a vector stalls: docs/decisions.md)
     strided_to_lanes<6>(&st.cp_inv[6 * g], b.cp_inv.v, n);
-    if (n < kLanes)
-      for (int i = 0; i < 3; ++i) b.cp_inv.v[i] = select(first_lanes(n), b.cp_inv.v[i], splat(1));
+    for (int i = 0; i < 3; ++i) b.cp_inv.v[i] = rest_past(b.cp_inv.v[i], n, 1);
     b.ep = load_lanes(&st.ep[g], n);
     if (!st.temperature.empty()) b.T = load_lanes(&st.temperature[g], n);
     if (!st.plastic_rate.empty()) b.rate_last = load_lanes(&st.plastic_rate[g], n);

@@ -234,7 +234,11 @@ void check_strided_round_trip(int n) {
   for (int l = 0; l < rk::kLanes; ++l) EXPECT_EQ(a[l], l < n ? x[1 + l] : 0.0) << "n " << n << ", lane " << l;
   for (int k = 0; k < rk::kLanes + 2; ++k) EXPECT_EQ(z[k], k >= 1 && k <= n ? x[k] : -1.0) << "n " << n << ", value " << k;
   const rk::LaneMask first = rk::first_lanes(n);
-  for (int l = 0; l < rk::kLanes; ++l) EXPECT_EQ(first[l], l < n ? -1 : 0) << "n " << n << ", lane " << l;
+  const rk::Lane rest = rk::rest_past(a, n, 7.0);
+  for (int l = 0; l < rk::kLanes; ++l) {
+    EXPECT_EQ(first[l], l < n ? -1 : 0) << "n " << n << ", lane " << l;
+    EXPECT_EQ(rest[l], l < n ? x[1 + l] : 7.0) << "n " << n << ", lane " << l;
+  }
 }
 TEST(J2, StridedLanesRoundTrip) {
   for (int n = 1; n <= rk::kLanes; ++n) {
