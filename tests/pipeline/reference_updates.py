@@ -2,12 +2,13 @@
 contact that lets the rim lift (geometry/taylor_bar/scene_contact.yaml), where the bounds below were
 measured (with the benchmark's wall, which holds the impact face, the updates read r_f -1.5 % and
 L_f +1.1 % but take 1.18x the total-Lagrangian steps: docs/validation.md):
-(1) at the 2007 paper's resolution the footprint radius and final length stay within 8 % and 2 % of the
-total-Lagrangian run (measured -4.1 % and +0.9 %: the updated discretization is not yet as
-accurate as the total-Lagrangian one on this bar, see docs/validation.md), with
+(1) at the 2007 paper's resolution the footprint radius and final length stay within 3 % and 2 % of the
+total-Lagrangian run (measured -1.12 % and +1.36 % on 2026-12-07; -4.1 % and +0.9 % before the step grew
+after updates: the updated discretization is not yet as accurate as the total-Lagrangian one on this bar,
+see docs/validation.md), with
 several updates, in fewer steps (the stable step no longer falls with the points' stretch since t = 0;
-it keeps the cells' compression before an update, so the ratio is 0.506 measured on 2026-12-01, 0.55
-allowed), and
+and after an update it grows to twice the cells' estimate on the new reference: the ratio is 0.154 measured on
+2026-12-07, 0.25 allowed; 0.304 with reference_updates.step_growth = 1, 0.506 before the step grew), and
 the energy balance holds; on a coarse bar (2) 1, 2 and 3 ranks give bitwise the same positions, velocities and
 plastic strain (the points stay on their ranks, the particles are gathered and re-distributed by
 rkprep's rules); (3) a run stopped after updates and restarted from its checkpoint ends bitwise
@@ -50,12 +51,12 @@ def last_frame(case):
 tl_case, tl = run("tl", 2, ["time.cfl=0.5"], spacing=[])
 up_case, up = run("updated", 2, [updates, "time.cfl=0.5"], spacing=[])
 a, b = taylor_metrics.metrics(tl_case), taylor_metrics.metrics(up_case)
-for key, tol in (("footprint_radius_mm", 0.08), ("final_length_mm", 0.02)):
+for key, tol in (("footprint_radius_mm", 0.03), ("final_length_mm", 0.02)):
     rel = b[key] / a[key] - 1
     rkcase.check(abs(rel) < tol, f"{key}: {b[key]:.3f} with updates vs {a[key]:.3f} total Lagrangian ({100 * rel:+.2f} %)")
 rkcase.check(up["reference_updates"] >= 5, f"{up['reference_updates']} reference updates")
-rkcase.check(up["steps"] < 0.55 * tl["steps"], f"{up['steps']} steps with updates vs {tl['steps']} total Lagrangian "
-             f"(ratio {up['steps'] / tl['steps']:.3f}, measured 0.506)")
+rkcase.check(up["steps"] < 0.25 * tl["steps"], f"{up['steps']} steps with updates vs {tl['steps']} total Lagrangian "
+             f"(ratio {up['steps'] / tl['steps']:.3f}, measured 0.154)")
 rkcase.check(up["energy_error"] < 0.02, f"energy error {100 * up['energy_error']:.2f} % with updates")
 history = np.genfromtxt(up_case / "history.csv", delimiter=",", names=True)
 lost = -history["update_work"][-1] / history["kinetic"][0]

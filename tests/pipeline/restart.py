@@ -94,7 +94,9 @@ rkcase.check(same(final(whole), final(killed)), "restarted after SIGKILL: final 
 # checkpoint and a frame, with one message saying how to go on; the restart ends bitwise equal.
 interrupted = copy("interrupted")
 args = ["mpirun", "-np", "2", str(tools.bin / "rksolve"), str(interrupted)] + sum((["--set", s] for s in long), [])
-job = subprocess.Popen(args, env=tools.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+# mpirun's own grace (Open MPI's default, 1 s) between passing the signal on and SIGKILL: the suite sets 0
+grace = dict(tools.env, OMPI_MCA_odls_base_sigkill_timeout="1")
+job = subprocess.Popen(args, env=grace, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 ckpt = interrupted / "checkpoint" / "rank_0001.h5"
 deadline = time.time() + 120
 while not ckpt.exists() and time.time() < deadline and job.poll() is None:  # well into the run

@@ -6,6 +6,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -17,12 +18,17 @@ sys.path.insert(0, str(ROOT / "scripts"))  # taylor_metrics, upsetting_check
 # ranks spin took 1.7-1.8x the wall time of the same runs yielding: 10.3 / 11.2 s against 6.0 / 6.5 s;
 # one run alone the same within the noise), and they are not bound to cores (mpirun binds a 1-rank
 # run to core 0, so two of them at once shared it: 2.09 / 2.18 s against 1.29 / 1.25 s unbound).
+# A job that fails costs no wait: after a rank's non-zero exit mpirun waits odls_base_sigkill_timeout
+# (1 s by default) twice even when every rank has ended (`mpirun -np 1 false`: 2.1 s against 0.09 s at 0),
+# and the suite runs 32 jobs meant to fail (2026-12-07). Their ranks have finished MPI_Finalize by then.
+# The one test of a signal's grace (Ctrl-C) sets Open MPI's default back.
 MPI_ENV = {
     "OMPI_ALLOW_RUN_AS_ROOT": "1",
     "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
     "OMPI_MCA_rmaps_base_oversubscribe": "1",
     "OMPI_MCA_mpi_yield_when_idle": "1",
     "OMPI_MCA_hwloc_base_binding_policy": "none",
+    "OMPI_MCA_odls_base_sigkill_timeout": "0",
 }
 
 
@@ -37,6 +43,7 @@ class Tools:
         """The program's CompletedProcess. Past `timeout` (or on an interrupt) it is killed with everything
         it started, its process group (mpirun's ranks, xvfb-run's X server), and TimeoutExpired is raised
         with its stderr."""
+        start = time.monotonic()
         proc = subprocess.Popen([str(a) for a in args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                                 env=self.env, start_new_session=True)
         try:
@@ -49,6 +56,9 @@ class Tools:
                 e.stderr = err
             raise
         p = subprocess.CompletedProcess(proc.args, proc.returncode, out, err)
+        # each program's wall time in the test's log (ctest's LastTest.log): where a slow test spends it
+        line = " ".join(map(str, args)).replace(f"{self.bin}/", "").replace(f"{self.work}/", "")
+        print(f"ran in {time.monotonic() - start:.2f} s, exit {p.returncode}: {line}")
         if expect_ok and p.returncode != 0:
             raise AssertionError(f"{' '.join(map(str, args))} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
         return p
