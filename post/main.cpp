@@ -402,8 +402,11 @@ int run(int argc, char** argv) {
                "write each frame as one piece per rank (vtk/frame_FFFFF/rank_RRRR.vtu: its owned particles, its cells and "
                "their points owned elsewhere as vtkGhostType ghosts) and a .pvtu listing them, for ParaView to read in "
                "parallel (pvbatch, pvserver); rkpost builds one rank's piece at a time instead of the whole part's frame");
-  bool no_pictures = false;
-  app.add_flag("--no-pictures", no_pictures, "skip the plots and ParaView pictures (CASE/plots/)");
+  bool no_pictures = false, plots_only = false;
+  auto* none = app.add_flag("--no-pictures", no_pictures, "skip the plots and ParaView pictures (CASE/plots/)");
+  app.add_flag("--plots-only", plots_only,
+               "the energy and force plots without the ParaView pictures (seconds a case, where the plots take one)")
+      ->excludes(none);
   app.add_flag("--quiet", quiet, "print nothing but errors");
   try {
     app.parse(argc, argv);
@@ -572,7 +575,7 @@ int run(int argc, char** argv) {
                   "%zu dies at t = 0\n", case_dir.c_str(), case_dir.c_str(), dies.size());
     return 0;
   }
-  if (!no_pictures) rk::make_pictures(case_dir, quiet);  // before the report, which lists them
+  if (!no_pictures) rk::make_pictures(case_dir, quiet, !plots_only);  // before the report, which lists them
   std::vector<std::string> fold_lines;
   for (const rk::Fold& f : folds) fold_lines.push_back(rk::describe_fold(f));
   rk::write_report(case_dir, fill, folding ? &fold_lines : nullptr);

@@ -18,7 +18,7 @@ bool installed(const char* tool) { return std::system(("command -v " + std::stri
 
 }  // namespace
 
-void make_pictures(const std::string& case_dir, bool quiet) {
+void make_pictures(const std::string& case_dir, bool quiet, bool renders) {
   namespace fs = std::filesystem;
   const std::string scripts = RK_SCRIPTS_DIR;
   std::string dir, py_plots, py_pictures, offscreen, log;
@@ -41,6 +41,7 @@ void make_pictures(const std::string& case_dir, bool quiet) {
   } else {
     std::fprintf(stderr, "rkpost: warning: no plots: /usr/bin/python3 (with matplotlib) is not installed\n");
   }
+  if (!renders) return;
   if (!installed("pvbatch")) {
     if (!quiet) std::printf("rkpost: no ParaView pictures (pvbatch not installed: python3-paraview)\n");
     return;
