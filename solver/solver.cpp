@@ -639,10 +639,9 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     const std::string path = restart_checkpoint(opt.case_dir, comm);
     collectively(comm, [&] { return read_checkpoint(path, md_, st_, clock_, *dies_), 0; });
     if (st_.t > scene_.time.end * (1 + 1e-12)) {  // (the same on every rank: they restart from one step)
-      char text[256];
-      std::snprintf(text, sizeof text, "key 'time.end' = %g s is before the checkpoint's t = %g s (%s): a restart "
-                    "goes on to a later time.end", scene_.time.end, st_.t, path.c_str());
-      throw Error(text);
+      char times[96];
+      std::snprintf(times, sizeof times, "key 'time.end' = %g s is before the checkpoint's t = %g s", scene_.time.end, st_.t);
+      throw Error(times + (" (" + path + "): a restart goes on to a later time.end"));
     }
   } else {
     collectively(comm, [&] { return remove_checkpoints(opt.case_dir, comm.rank()), 0; });
