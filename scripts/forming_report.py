@@ -20,17 +20,13 @@ import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import meshio  # noqa: E402
-import numpy as np  # noqa: E402
-import yaml  # noqa: E402
+import meshio
+import numpy as np
+import yaml
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from case_check import case_folder  # noqa: E402
-from history_plots import moving_dies, plot_die_forces, plot_energies, read_history  # noqa: E402
+from history_plots import moving_dies, plot_die_forces, plot_energies, pyplot, read_history  # noqa: E402
 
 
 def summary(case: Path) -> dict:
@@ -145,7 +141,7 @@ def plots(case: Path, stages: int) -> None:
     all_frames = frames(case)
     picks = sorted({round(k * (len(all_frames) - 1) / max(stages - 1, 1)) for k in range(stages)})
     point, normal = first_plane(case)
-    axis = np.array([0.0, 0.0, 1.0])
+    plt = pyplot()
     fig, axes = plt.subplots(1, len(picks), figsize=(3.2 * len(picks), 4), sharey=True)
     axes = np.atleast_1d(axes)
     spacing = None

@@ -10,13 +10,19 @@ import argparse
 import csv
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from case_check import check_run
 
-from case_check import check_run  # noqa: E402
+
+def pyplot():
+    """matplotlib's pyplot, drawing off-screen; imported when a plot is drawn, not with the module: its
+    half second a run would weigh on every --help, every error and every script run that draws nothing
+    (the studies' plans and runs, the scripts' reads)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
 
 
 def read_history(case: Path):
@@ -31,6 +37,7 @@ def moving_dies(header):
 
 
 def plot_energies(rows, path: Path) -> None:
+    plt = pyplot()
     end = float(rows[-1]["time"])
     scale, unit = (1e6, "us") if end < 1e-3 else (1e3, "ms") if end < 1 else (1.0, "s")
     t = [scale * float(r["time"]) for r in rows]
@@ -77,6 +84,7 @@ def finish_force_plot(fig, ax, path: Path) -> None:
 
 def plot_die_forces(rows, path: Path) -> bool:
     """Force against stroke of each moving die, raw and its running mean. False if no die moves."""
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(6, 4))
     drawn = False
     for d in moving_dies(rows[0].keys()):
@@ -94,6 +102,7 @@ def plot_die_forces(rows, path: Path) -> bool:
 
 def compare_forces(out: Path, cases) -> None:
     """The running-mean force of each case's first moving die, on one plot."""
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(6, 4))
     for spec in cases:
         case, _, label = spec.partition("=")

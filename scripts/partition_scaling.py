@@ -9,7 +9,7 @@ overlap fraction, prep wall and peak memory). Rows go to stdout and DIR/partitio
 at the end the fit overlap per rank = c (owned per rank)^(2/3) by least squares in c.
 A value exchanged per step is one 64-bit fixed-point force component sent (and one received).
 """
-import argparse, csv, json, os, subprocess, sys
+import argparse, csv, json, os, subprocess
 
 ap = argparse.ArgumentParser()
 ap.add_argument("scene")

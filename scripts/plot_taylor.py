@@ -3,18 +3,12 @@
 2007, with that paper's final values marked) and the energy balance. Writes CASE/plots/*.png and
 CASE/plots/results.json (the key results against the references, shown by rkpost in report.md)."""
 import argparse
-import csv
 import json
 import sys
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from history_plots import plot_energies, read_history  # noqa: E402
+from history_plots import plot_energies, pyplot, read_history  # noqa: E402
 from case_check import case_folder, require_part  # noqa: E402
 from taylor_metrics import HISTORY, HISTORY_US, REFERENCE, TAYLOR_PARTS, frames_of, metrics  # noqa: E402
 
@@ -24,6 +18,7 @@ def main(case: Path) -> None:
     out.mkdir(exist_ok=True)
     series = [metrics(case, k) for k in range(len(frames_of(case)))]
     t = [1e6 * m["time_s"] for m in series]
+    plt = pyplot()
     fig, ax = plt.subplots(1, 2, figsize=(10, 4))
     for a, key, label in ((ax[0], "footprint_radius_mm", "impact-face radius (mm)"),
                           (ax[1], "final_length_mm", "length (mm)")):

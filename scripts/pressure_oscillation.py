@@ -5,7 +5,6 @@ its curvature; a checkerboard (pressure modes of a nearly incompressible materia
 RMS of that difference. Usage:
   pressure_oscillation.py CASE [--json]
 """
-import json
 
 import meshio
 import numpy as np

@@ -28,6 +28,7 @@ import beam_check  # noqa: E402
 import case_check  # noqa: E402
 import taylor_metrics  # noqa: E402
 import upsetting_check  # noqa: E402
+from history_plots import pyplot  # noqa: E402
 
 SMOKE = os.environ.get("SMOKE", "0") == "1"
 DRIFT_END = float(os.environ.get("DRIFT_END", "0.1"))  # s; 1.09e6 steps of the stability study's bar at CFL 0.9
@@ -480,26 +481,12 @@ def observed_order(rows, key):
 MARKS = {"gauss": "o-", "nodal": "^--", "frequency": "s:", "gauss1": "d-.", "four_point": "v-", "six_point": "x--"}  # the convergence series' lines
 
 
-def subplots(*args, **kw):
-    """matplotlib's figure and axes, imported here: its half second would weigh on every plan, prep and
-    solve of a study (tens of runs of this script), which draw nothing."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    return plt.subplots(*args, **kw)
-
-
-def save_figure(fig, path):
-    import matplotlib.pyplot as plt
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-
-
 def report_convergence(rows, out):
     tay = [r for r in rows if r["case"].startswith("taylor") and r.get("footprint_radius_mm")]
     series = {name: [r for r in tay if r.get("series", "gauss") == name] for name in MARKS}
     ups = [r for r in rows if r["case"].startswith("upsetting") and r.get("error") is not None and "series" not in r]
-    fig, ax = subplots(1, 2, figsize=(10, 4))
+    plt = pyplot()
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
     for name, rs in series.items():
         for key, ref in (*TAYLOR_REF.items(), ("radius_0.2mm_mm", TAYLOR_REF["footprint_radius_mm"])):
             if rs and all(key in r for r in rs):
@@ -518,7 +505,8 @@ def report_convergence(rows, out):
     ax[1].set_ylabel("wall time (s)")
     ax[1].legend(fontsize=8)
     fig.tight_layout()
-    save_figure(fig, out / "convergence.png")
+    fig.savefig(out / "convergence.png", dpi=120)
+    plt.close(fig)
     lines = ["", "![convergence](convergence.png)", ""]
     for name, rs in series.items():
         for key in (*TAYLOR_REF, "radius_0.2mm_mm"):
@@ -546,7 +534,8 @@ def report_tradeoffs(rows, out):
         return lines
     pts = [(r["error"], r["wall_s"]) for r in tay]
     front = pareto(pts)
-    fig, ax = subplots(figsize=(7, 5))
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(7, 5))
     ax.scatter([p[1] for p in pts], [p[0] for p in pts], color="0.6")
     for r in tay:
         ax.annotate(r["label"], (r["wall_s"], r["error"]), fontsize=7)
@@ -566,7 +555,8 @@ def report_tradeoffs(rows, out):
     ax.set_ylabel("error (Taylor bar, vs converged FE)")
     ax.legend()
     fig.tight_layout()
-    save_figure(fig, out / "pareto.png")
+    fig.savefig(out / "pareto.png", dpi=120)
+    plt.close(fig)
     lines += ["", "![pareto](pareto.png)", "",
               f"Picks on the Pareto front: fast = the quickest with error <= {FAST_ERROR:g}, accurate = the smallest "
               "error, balanced = the smallest error x time.", "",
@@ -581,7 +571,8 @@ def report_scaling(rows, out):
     if not ok:
         return []
     base = next((r for r in ok if r["ranks"] == 1), ok[0])
-    fig, ax = subplots(figsize=(6, 4))
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(6, 4))
     ns = [r["ranks"] for r in ok]
     ax.plot(ns, [base["wall_s"] / r["wall_s"] for r in ok], "o-", label="rkforge (this machine)")
     ax.plot([1, *PAPER_SPEEDUP], [1, *PAPER_SPEEDUP.values()], "s--", label="Wang et al. 2007, Taylor bar")
@@ -590,7 +581,8 @@ def report_scaling(rows, out):
     ax.set_ylabel("speedup")
     ax.legend()
     fig.tight_layout()
-    save_figure(fig, out / "scaling.png")
+    fig.savefig(out / "scaling.png", dpi=120)
+    plt.close(fig)
     lines = ["", "![scaling](scaling.png)", "", "| ranks | wall (s) | speedup | efficiency | 2007 paper's speedup |",
              "|---|---|---|---|---|"]
     for r in ok:
