@@ -405,7 +405,7 @@ int run(int argc, char** argv) {
   bool no_pictures = false, plots_only = false;
   auto* none = app.add_flag("--no-pictures", no_pictures, "skip the plots and ParaView pictures (CASE/plots/)");
   app.add_flag("--plots-only", plots_only,
-               "the energy and force plots without the ParaView pictures (seconds a case, where the plots take one)")
+               "the energy and force plots without the ParaView pictures (a second a case instead of several)")
       ->excludes(none);
   app.add_flag("--quiet", quiet, "print nothing but errors");
   try {

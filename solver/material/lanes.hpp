@@ -78,9 +78,8 @@ inline Lane load_lanes(const double* x, int n) {
   if (n == kLanes) return load_lanes(x);
 #if defined(__AVX512F__)
   return (Lane)_mm512_maskz_loadu_pd(__mmask8((1u << n) - 1), x);
-#elif defined(__AVX__)  // (the mask by a compare of doubles: AVX has no 64-bit integer compare)
-  const __m256d lane = _mm256_set_pd(3, 2, 1, 0);
-  return (Lane)_mm256_maskload_pd(x, _mm256_castpd_si256(_mm256_cmp_pd(lane, _mm256_set1_pd(n), _CMP_LT_OQ)));
+#elif defined(__AVX__)
+  return (Lane)_mm256_maskload_pd(x, (__m256i)first_lanes(n));
 #else
   Lane v{};
   for (int l = 0; l < n; ++l) v[l] = x[l];
@@ -215,8 +214,7 @@ inline void store_lanes(double* x, Lane v, int n) {
 #if defined(__AVX512F__)
   _mm512_mask_storeu_pd(x, __mmask8((1u << n) - 1), (__m512d)v);
 #elif defined(__AVX__)
-  const __m256d lane = _mm256_set_pd(3, 2, 1, 0);
-  _mm256_maskstore_pd(x, _mm256_castpd_si256(_mm256_cmp_pd(lane, _mm256_set1_pd(n), _CMP_LT_OQ)), (__m256d)v);
+  _mm256_maskstore_pd(x, (__m256i)first_lanes(n), (__m256d)v);
 #else
   for (int l = 0; l < n; ++l) x[l] = v[l];
 #endif
