@@ -84,7 +84,7 @@ class Simulation {
   bool history_due(bool last) const;
   void history(double dt, bool last);
   bool output_due(bool last) const;
-  void output();
+  void output(double dt);
   void displacement_update(double dt);
 
   void dwell();  // a stage in which nothing moves the part: the temperature alone, at the thermal step
@@ -175,7 +175,7 @@ void Simulation::run() {
     constraints(dt, dt_avg);                    // the essential BCs at t^{n+1}
     boundary_work(dt_avg);                      // the contact's and the body force's work over the step
     if (history_due(last)) history(dt, last);   // a history row at t^n, its health checks
-    if (output_due(last)) output();             // a frame at t^n with vbar
+    if (output_due(last)) output(dt);           // a frame at t^n, v^n between v^{n-1/2} and v^{n+1/2}
     if (last) break;
     displacement_update(dt);                    // d^{n+1} = d^n + dt v^{n+1/2}, t^{n+1}
     progress_->step(st_, dt, clock_.last_error, history_->row(), comm_.wtime());
@@ -199,7 +199,7 @@ void Simulation::dwell() {
     if (checkpoint_due(last)) checkpoint();
     if (limits_.interrupted) stop_on_interrupt();
     if (history_due(last)) history(0.0, last);
-    if (output_due(last)) output();
+    if (output_due(last)) output(0.0);
     if (last) break;
     double dt = scene_.time.end - st_.t;
     if (heat_) dt = std::min(dt, st_.thermal_dt);
@@ -503,8 +503,22 @@ bool Simulation::output_due(bool last) const {
   return last || (sync_ && st_.t >= clock_.next_output - 1e-9 * scene_.time.output_interval);
 }
 
-void Simulation::output() {
-  for (std::size_t k = 0; k < v_old_.size(); ++k) v_old_[k] = 0.5 * (v_old_[k] + st_.v[k]);  // vbar
+// The frame's velocity at t^n: v^{n-1/2} and v^{n+1/2} (at t^n less half the last step and plus half
+// this one) interpolated linearly in time, v^{n-1/2} + (dt^{n-1/2} / 2) a^n. With multi-rate steps each
+// particle's own last and next spans, so a frame does not depend on the steps that follow it (a frame
+// in the middle of a run and the last frame of a run ending there agree). dt = 0 (a dwell: nothing
+// moves): v itself.
+void Simulation::output(double dt) {
+  for (std::size_t I = 0; I < md_.n; ++I) {
+    double w = 1;  // the weight of v^{n+1/2}
+    if (subcycles_ && dt > 0) {  // (at a cycle's start every particle is due: own = (last + next span) / 2)
+      const double own = particle_dt_avg_[I], next = st_.particle_dt_half[I];
+      w = own > 0 ? (2 * own - next) / (2 * own) : 0.0;
+    } else if (dt > 0) {
+      w = st_.dt_half / (st_.dt_half + dt);
+    }
+    for (int i = 0; i < 3; ++i) v_old_[3 * I + i] += w * (st_.v[3 * I + i] - v_old_[3 * I + i]);
+  }
   write_frame(v_old_);
   clock_.next_output += scene_.time.output_interval;
   timer_.stop(kOutput);
