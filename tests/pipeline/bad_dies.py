@@ -40,7 +40,11 @@ for sets, needle, what in (([f"geometry.cad={w / 'junk.step'}"], "junk.step: gms
                            (["geometry.unit=m"], "the part is 32.4 m across with geometry.unit = 1 m per CAD unit",
                             "Taylor bar in mm read as metres"),
                            ([f"geometry.cad={w / 'nothing.step'}"], "nothing.step: CAD file not found",
-                            "missing workpiece CAD")):
+                            "missing workpiece CAD"),
+                           # 3 240 spacings across, so within the size bound, but about 1e9 particles: gmsh
+                           # took 6 GB in 40 s and went on growing before this check (2026-12-07)
+                           (["discretization.spacing=1e-5"], "particles, whose preparation needs about",
+                            "a spacing too fine for this machine's memory")):
     p = tools.prep(tools.case("bad_cad_case"), 1, scene=scene, sets=sets, expect_ok=False, timeout=60)
     rkcase.check(p.returncode != 0 and needle in p.stderr and p.stderr.count("error:") == 1,
                  f"{what}: {p.stderr.strip()}")
