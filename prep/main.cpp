@@ -117,7 +117,7 @@ int run(int argc, char** argv) {
   auto t0 = std::chrono::steady_clock::now();
   const rk::Scene scene = rk::load_scene(scene_file, rk::parse_overrides(sets), rk::Side::prep);
   check_case_folder_writable(out);
-  for (const std::string& w : rk::accuracy_warnings(scene)) std::fprintf(stderr, "rkprep: warning: %s\n", w.c_str());
+  for (const std::string& w : rk::scene_warnings(scene)) std::fprintf(stderr, "rkprep: warning: %s\n", w.c_str());
   // a new case never lies beside another's results: refused, or with --force those files go first
   if (const std::string old = rk::case_entries_in(out); !old.empty()) {
     if (!force)

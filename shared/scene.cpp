@@ -957,8 +957,42 @@ std::vector<std::string> accuracy_warnings(const Scene& s) {
   return out;
 }
 
+// Elastic constants, densities and strengths no metal has: almost always a value in another unit (E in GPa,
+// the density in g/cm^3), which runs and gives a wrong answer (E = 71 Pa: the whole run in one step).
+std::vector<std::string> material_warnings(const Scene& s) {
+  std::vector<std::string> out;
+  auto check = [&](const std::string& at, const Material& m) {
+    char text[320];
+    if (m.youngs_modulus < 1e9) {
+      std::snprintf(text, sizeof text, "%s.youngs_modulus = %g Pa is below any metal's (lead: 16 GPa, hot steel near "
+                    "its melting point: about 30 GPa): in Pa, not GPa or MPa?", at.c_str(), m.youngs_modulus);
+      out.push_back(text);
+    }
+    if (m.density < 500 || m.density > 25000) {
+      std::snprintf(text, sizeof text, "%s.density = %g kg/m^3 is outside any metal's (magnesium 1740, osmium 22590): "
+                    "in kg/m^3, not g/cm^3 or kg/mm^3?", at.c_str(), m.density);
+      out.push_back(text);
+    }
+    // the flow stress's scale: the initial yield (linear, Johnson-Cook's A) or the power law's K
+    const double strength = m.model == MaterialModel::j2_power ? m.strength
+                            : m.model == MaterialModel::j2_linear || m.model == MaterialModel::johnson_cook ? m.yield_stress
+                                                                                                             : 0.0;
+    const char* key = m.model == MaterialModel::j2_power ? "strength" : "yield_stress";
+    if (m.youngs_modulus >= 1e9 && strength > 0.05 * m.youngs_modulus) {
+      std::snprintf(text, sizeof text, "%s.%s = %g Pa is %.2g of youngs_modulus = %g Pa, where no metal's exceeds 0.02: "
+                    "is one of them in another unit?", at.c_str(), key, strength, strength / m.youngs_modulus, m.youngs_modulus);
+      out.push_back(text);
+    }
+  };
+  check("material", s.material);
+  for (std::size_t b = 0; b < s.bodies.size(); ++b)
+    if (s.bodies[b].material) check("bodies[" + std::to_string(b) + "].material", *s.bodies[b].material);
+  return out;
+}
+
 std::vector<std::string> scene_warnings(const Scene& s) {
   std::vector<std::string> out = temperature_warnings(s);
+  for (std::string& w : material_warnings(s)) out.push_back(std::move(w));
   for (std::string& w : accuracy_warnings(s)) out.push_back(std::move(w));
   return out;
 }

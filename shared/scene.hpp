@@ -353,7 +353,11 @@ std::vector<std::string> temperature_warnings(const Scene& scene);
 // solve.json's warnings.
 std::vector<std::string> accuracy_warnings(const Scene& scene);
 
-// Every warning the scene alone gives (the two lists above), as rksolve prints and reports them.
+// Material constants no metal has (a value in another unit, most often): youngs_modulus below 1 GPa, a
+// density outside 500-25000 kg/m^3, a yield stress or power-law strength above 5 % of youngs_modulus.
+std::vector<std::string> material_warnings(const Scene& scene);
+
+// Every warning the scene alone gives (the lists above), as rksolve prints and reports them.
 std::vector<std::string> scene_warnings(const Scene& scene);
 
 // Basis requirements: the smallest dilation with which the moment matrix stays regular.
