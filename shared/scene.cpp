@@ -47,6 +47,12 @@ class Section {
       : file_(std::move(file)), node_(node), path_(std::move(path)), resolved_(resolved) {
     if (node_ && !node_.IsNull() && !node_.IsMap())
       throw Error(where(file_, node_, path_) + ": '" + path_ + "' must be a map of keys");
+    std::set<std::string> keys;  // (YAML leaves a key given twice to the reader, which would take the first)
+    if (node_ && node_.IsMap())
+      for (const auto& kv : node_)
+        if (kv.first.IsScalar() && !keys.insert(kv.first.Scalar()).second)
+          throw Error(where(file_, kv.first, key_path(kv.first.Scalar())) + ": key '" + key_path(kv.first.Scalar()) +
+                      "' is given twice");
   }
 
   std::string key_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
@@ -104,6 +110,16 @@ class Section {
     }
     resolved_[key] = s;
     return s;
+  }
+
+  // An entry's `name`: it heads columns of history.csv and tracks.csv and names the entry in
+  // messages, so letters, digits, '_' and '-' only (a comma split the columns; an empty name gave '.force').
+  std::string name(std::optional<std::string> fallback) {
+    const std::string n = text("name", std::move(fallback));
+    if (n.empty() || !std::all_of(n.begin(), n.end(), [](unsigned char c) { return std::isalnum(c) || c == '_' || c == '-'; }))
+      throw Error(where_of("name") + " = '" + n +
+                  "': a name heads columns of history.csv and tracks.csv: letters, digits, '_' and '-' only");
+    return n;
   }
 
   Vec3 vec3(const std::string& key, std::optional<Vec3> fallback, bool unit = false) {
@@ -565,7 +581,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     s.geometry.unit = unit_length(unit);
     g.list("bodies", [&](Section& b) {
       Scene::Body body;
-      body.name = b.text("name", std::nullopt);
+      body.name = b.name(std::nullopt);
       if (body.name == "part" || std::any_of(s.bodies.begin(), s.bodies.end(), [&](const Scene::Body& o) { return o.name == body.name; }))
         throw Error(b.where_of("name") + ": '" + body.name + "' names the part or another body");
       std::filesystem::path c(b.text("cad", std::nullopt));
@@ -655,7 +671,10 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     });
     auto face = [&](Section& p, const std::string& kind, std::size_t count) {
       EssentialFace f;
-      f.name = p.text("name", kind + std::to_string(count));
+      f.name = p.name(kind + std::to_string(count));
+      for (const auto* list : {&s.fixed_faces, &s.prescribed_faces})
+        for (const EssentialFace& other : *list)
+          if (other.name == f.name) throw Error(p.where_of("name") + ": two faces named '" + f.name + "' (their history columns would clash)");
       f.point = p.vec3("point", std::nullopt);
       f.normal = p.vec3("normal", std::nullopt, true);
       return f;
@@ -668,7 +687,9 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     });
     b.list("rigid_walls", [&](Section& p) {
       RigidWall w;
-      w.name = p.text("name", "wall" + std::to_string(s.rigid_walls.size()));
+      w.name = p.name("wall" + std::to_string(s.rigid_walls.size()));
+      for (const RigidWall& other : s.rigid_walls)
+        if (other.name == w.name) throw Error(p.where_of("name") + ": two rigid walls named '" + w.name + "' (their history columns would clash)");
       w.point = p.vec3("point", std::nullopt);
       w.normal = p.vec3("normal", std::nullopt, true);
       s.rigid_walls.push_back(w);
@@ -678,7 +699,9 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
   std::vector<SymmetryPlane> planes = s.symmetry_planes;
   top.list("dies", [&](Section& d) {
     Die die;
-    die.name = d.text("name", std::nullopt);
+    die.name = d.name(std::nullopt);
+    for (const Die& other : s.dies)
+      if (other.name == die.name) throw Error(d.where_of("name") + ": two dies named '" + die.name + "' (their history columns would clash)");
     std::filesystem::path p(d.text("cad", std::nullopt));
     die.cad = (p.is_absolute() ? p : (s.dir / p)).lexically_normal().string();
     d.record("cad", die.cad);
@@ -734,7 +757,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
       o.max_steps_per_update = t.integer("max_steps_per_update", 20, 0, 1000000);
       t.list("fixed_faces", [&](Section& p) {
         TemperatureFace f;
-        f.name = p.text("name", "temperature" + std::to_string(o.fixed_faces.size()));
+        f.name = p.name("temperature" + std::to_string(o.fixed_faces.size()));
         f.point = p.vec3("point", std::nullopt);
         f.normal = p.vec3("normal", std::nullopt, true);
         f.temperature = p.number("temperature", std::nullopt, {0, 1e4, true, false});
@@ -823,7 +846,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     s.output.checkpoint_minutes = o.number("checkpoint_minutes", s.output.checkpoint_minutes, {0, 1e6});
     // an entry's name, `fallback` where it has none, unique in its list
     auto unique_name = [&](Section& p, const auto& list, const char* key, const std::string& fallback) {
-      const std::string n = p.text("name", fallback);
+      const std::string n = p.name(fallback);
       for (const auto& other : list)
         if (other.name == n) throw Error(name + ": key 'output." + key + "': two entries named '" + n + "'");
       return n;

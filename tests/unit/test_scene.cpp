@@ -1,6 +1,7 @@
 // Scene validation: each kind of bad input is one error naming the file, the line and the key.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -88,6 +89,47 @@ TEST(Scene, MisspeltRequiredKeyIsNamedOnItsOwnLine) {
   // a key far from any known one is not taken for a misspelling
   const auto far = error_of(replace(kGood, "  poisson_ratio: 0.35", "  colour: red"));
   EXPECT_EQ(far.find("did you mean"), std::string::npos) << far;
+}
+
+// A key given twice: YAML leaves it to the reader, which took the first value without a word
+TEST(Scene, AKeyGivenTwiceIsNamedOnItsSecondLine) {
+  const auto e = error_of(replace(kGood, "  density: 8930", "  density: 8930\n  density: 7800"));
+  EXPECT_TRUE(std::regex_search(e, std::regex(R"(\.yaml:9: key 'material\.density' is given twice)"))) << e;
+}
+
+// Names head history.csv's columns: a comma split them (33 header columns over 26-column rows), an empty
+// name gave '.force', two dies of one name two columns 'die.stroke'
+TEST(Scene, NamesAreColumnHeadsUniqueInTheirList) {
+  const std::string walls = std::string(kGood) + "boundaries:\n  rigid_walls:\n    - {name: floor, point: [0, 0, 0], normal: [0, 0, 1]}\n";
+  const auto comma = error_of(replace(walls, "name: floor", "name: 'floor,left'"));
+  EXPECT_NE(comma.find("key 'boundaries.rigid_walls[0].name' = 'floor,left': a name heads columns of history.csv"), std::string::npos)
+      << comma;
+  const auto empty = error_of(replace(walls, "name: floor", "name: ''"));
+  EXPECT_NE(empty.find("= '': a name heads columns"), std::string::npos) << empty;
+  const auto twice = error_of(walls + "    - {name: floor, point: [0, 0, 0.03], normal: [0, 0, -1]}\n");
+  EXPECT_NE(twice.find("two rigid walls named 'floor'"), std::string::npos) << twice;
+  EXPECT_EQ(error_of(replace(walls, "name: floor", "name: floor_2-a")), "");
+  const std::string die = "  - {name: die, cad: die.geo, unit: mm, motion: {direction: [0, 0, -1], speed: 1}}\n";
+  const std::string dies = std::string(kGood) + "dies:\n" + die;
+  EXPECT_EQ(error_of(dies), "");
+  const auto two = error_of(dies + die);
+  EXPECT_NE(two.find("key 'dies[1].name': two dies named 'die'"), std::string::npos) << two;
+}
+
+// Constants in another unit run and give a wrong answer (E in GPa: the whole run in one step): warned by key
+TEST(Scene, MaterialConstantsNoMetalHasAreWarnedByTheirKeys) {
+  EXPECT_TRUE(rk::material_warnings(rk::load_scene(write_scene(kGood))).empty());
+  const auto has = [](const std::vector<std::string>& w, const std::string& text) {
+    return std::any_of(w.begin(), w.end(), [&](const std::string& x) { return x.find(text) != std::string::npos; });
+  };
+  const auto gpa = rk::material_warnings(rk::load_scene(write_scene(replace(kGood, "117.0e9", "117"))));
+  EXPECT_TRUE(has(gpa, "material.youngs_modulus = 117 Pa is below any metal's")) << gpa.size();
+  const auto gcc = rk::material_warnings(rk::load_scene(write_scene(replace(kGood, "8930", "8.93"))));
+  EXPECT_TRUE(has(gcc, "material.density = 8.93 kg/m^3 is outside any metal's")) << gcc.size();
+  const auto strong = rk::material_warnings(rk::load_scene(write_scene(replace(kGood, "400.0e6", "400.0e9"))));
+  EXPECT_TRUE(has(strong, "material.yield_stress = 4e+11 Pa is 3.4 of youngs_modulus")) << (strong.empty() ? "" : strong[0]);
+  // the edges: 1 GPa and 5 % of E pass
+  EXPECT_TRUE(rk::material_warnings(rk::load_scene(write_scene(replace(replace(kGood, "117.0e9", "1e9"), "400.0e6", "50e6")))).empty());
 }
 
 TEST(Scene, WrongType) {
