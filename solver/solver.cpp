@@ -131,7 +131,7 @@ class Simulation {
   int headroom_ = 0;  // of the fixed-point force sums: their resolution (raised in a step that needs it)
   ForceTerms force_terms_;  // the most terms of each kind a particle's force sum receives
   int die_headroom_ = 0;  // of the dies' own sums (their loads, a ram's reaction)
-  std::vector<double> v_old_;  // v^{n-1/2} during the step (vbar at an output)
+  std::vector<double> v_old_;  // v^{n-1/2} during the step (v^n at an output)
   std::int64_t first_step_ = 0;
   double t0_ = 0;  // the run's start on the chain's clock: 0, or a stage's start
   StageLink stage_;
@@ -605,7 +605,9 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   bool rates = scene_.material.thermal();
   for (const Die& d : scene_.dies) rates = rates || d.shear_factor > 0;
   if (rates) st_.plastic_rate.assign(md_.m, 0.0);
-  if (md_.thermal_strain()) st_.stretch_last.assign(md_.m, 0.0);
+  // the stretch at the uniform initial temperature T0, 1: a point that starts elsewhere (a temperature region)
+  // has its thermal strain's jump in the first step's thermal work, so the balance holds the energy it starts with
+  if (md_.thermal_strain()) st_.stretch_last.assign(md_.m, 1.0);
   if (scene_.damage.on()) st_.damage.assign(kDamageCriteria * md_.m, 0.0);
   std::int64_t crowded = -1;  // an F-bar cell with more points than the stress update's per-cell scratch holds
   for (std::size_t c = 0; md_.fbar && c < md_.cells && crowded < 0; ++c)
