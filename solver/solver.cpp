@@ -19,6 +19,7 @@
 #include "error.hpp"
 #include "health.hpp"
 #include "highest_frequency.hpp"
+#include "io/case_lock.hpp"
 #include "io/checkpoint.hpp"
 #include "io/history.hpp"
 #include "io/point_tracks.hpp"
@@ -833,6 +834,7 @@ void Simulation::finish() {
 }  // namespace
 
 void solve_case(const SolveOptions& opt, const Comm& comm) {
+  const auto lock = collectively(comm, [&] { return comm.rank() == 0 ? std::make_unique<CaseLock>(opt.case_dir) : nullptr; });
   Simulation simulation(opt, comm);
   simulation.run();
   simulation.finish();

@@ -101,6 +101,11 @@ ckpt = interrupted / "checkpoint" / "rank_0001.h5"
 deadline = time.time() + 120
 while not ckpt.exists() and time.time() < deadline and job.poll() is None:  # well into the run
     time.sleep(0.05)
+# a second rksolve into the case while this one runs is refused (two runs' history rows interleaved and
+# both exited 0), and leaves the running one alone: its restart below still ends bitwise equal
+second = tools.solve(interrupted, 2, sets=long, expect_ok=False)
+rkcase.check(second.returncode != 0 and "another rksolve is running in this case" in second.stderr and job.poll() is None,
+             f"a second run into the running case: exit {second.returncode}, {second.stderr.strip()[:200]}")
 job.send_signal(signal.SIGINT)
 _, err = job.communicate(timeout=60)
 said = [ln for ln in err.splitlines() if "rksolve: error" in ln]

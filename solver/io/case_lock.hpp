@@ -1,0 +1,23 @@
+// One rksolve at a time in a case folder: two runs into one case interleaved their history rows and
+// left one run's solve.json beside the other's last frame, both exiting 0. Rank 0 holds an advisory
+// lock (flock) on CASE/.rksolve.lock for the run's life; the system drops it when the process ends,
+// however it ends, so a killed run leaves no stale lock behind (the empty file stays).
+#pragma once
+#include <string>
+
+namespace rk {
+
+class CaseLock {
+ public:
+  // Takes the lock, or throws Error naming the case when another process holds it. Where the file
+  // cannot be made (no such folder, a read-only case) nothing is locked: the run's own checks say why.
+  explicit CaseLock(const std::string& case_dir);
+  ~CaseLock();
+  CaseLock(const CaseLock&) = delete;
+  CaseLock& operator=(const CaseLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+}  // namespace rk
