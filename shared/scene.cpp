@@ -1013,9 +1013,25 @@ std::vector<std::string> material_warnings(const Scene& s) {
   return out;
 }
 
+// More frames than anyone looks at: an interval in another unit, or a slip of the exponent (1e-12 s
+// wrote a frame every step, 2 905 frames and 444 MB for 185 particles)
+std::vector<std::string> output_warnings(const Scene& s) {
+  std::vector<std::string> out;
+  const double frames = s.time.end / s.time.output_interval;
+  if (frames > 1000) {
+    char text[320];
+    std::snprintf(text, sizeof text, "time.output_interval = %g s asks for %.3g frames over time.end = %g s (a frame is "
+                  "written at most once a step, each of every particle's fields): a slip of units or of the exponent?",
+                  s.time.output_interval, frames, s.time.end);
+    out.push_back(text);
+  }
+  return out;
+}
+
 std::vector<std::string> scene_warnings(const Scene& s) {
   std::vector<std::string> out = temperature_warnings(s);
   for (std::string& w : material_warnings(s)) out.push_back(std::move(w));
+  for (std::string& w : output_warnings(s)) out.push_back(std::move(w));
   for (std::string& w : accuracy_warnings(s)) out.push_back(std::move(w));
   return out;
 }

@@ -357,6 +357,9 @@ std::vector<std::string> accuracy_warnings(const Scene& scene);
 // density outside 500-25000 kg/m^3, a yield stress or power-law strength above 5 % of youngs_modulus.
 std::vector<std::string> material_warnings(const Scene& scene);
 
+// More than 1000 frames asked (time.end / time.output_interval).
+std::vector<std::string> output_warnings(const Scene& scene);
+
 // Every warning the scene alone gives (the lists above), as rksolve prints and reports them.
 std::vector<std::string> scene_warnings(const Scene& scene);
 

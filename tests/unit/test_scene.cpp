@@ -132,6 +132,14 @@ TEST(Scene, MaterialConstantsNoMetalHasAreWarnedByTheirKeys) {
   EXPECT_TRUE(rk::material_warnings(rk::load_scene(write_scene(replace(replace(kGood, "117.0e9", "1e9"), "400.0e6", "50e6")))).empty());
 }
 
+TEST(Scene, AThousandFramesOrMoreAreWarnedOf) {
+  EXPECT_TRUE(rk::output_warnings(rk::load_scene(write_scene(kGood))).empty());  // (10 frames by default)
+  const auto many = rk::output_warnings(rk::load_scene(write_scene(replace(kGood, "  end: 1.0e-6\n", "  end: 1.0e-6\n  output_interval: 1e-12\n"))));
+  ASSERT_EQ(many.size(), 1u);
+  EXPECT_NE(many[0].find("time.output_interval = 1e-12 s asks for 1e+06 frames"), std::string::npos) << many[0];
+  EXPECT_TRUE(rk::output_warnings(rk::load_scene(write_scene(replace(kGood, "  end: 1.0e-6\n", "  end: 1.0e-6\n  output_interval: 1e-9\n")))).empty());
+}
+
 TEST(Scene, WrongType) {
   const auto e = error_of(replace(kGood, "117.0e9", "hard"));
   EXPECT_NE(e.find(".yaml:9: key 'material.youngs_modulus' must be a number"), std::string::npos) << e;
