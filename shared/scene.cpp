@@ -348,7 +348,7 @@ DieMotion read_motion(Section& owner, bool press) {
     if (!(k.rod > k.radius))
       throw Error(c.where_of("rod") + ": the connecting rod must be longer than the crank radius (" + std::to_string(k.radius) + " m)");
     k.strokes_per_minute = c.number("strokes_per_minute", std::nullopt, {0, 1e4, true, false});
-    k.start_angle = c.number("start_angle", 0.0, {0, 180, true, false}) * M_PI / 180;
+    k.start_angle = c.number("start_angle", 0.0, {0, 180, false, true}) * M_PI / 180;
     c.done();
   } else if (!motion.curve.empty()) {
     motion.speed = m.number("speed", 0.0, {0, 0});

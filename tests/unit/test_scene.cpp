@@ -480,6 +480,12 @@ TEST(Scene, CrankPressFollowsTheSliderCrankLaw) {
   EXPECT_NE(error_of(replace(text, "end: 1.0e-6", "end: 0.3")).find("'time.end' = 0.3 s runs past the bottom dead centre of die 'top' at 0.25 s"),
             std::string::npos);
   EXPECT_NE(error_of(replace(text, "crank: {", "curve: [[0, 0], [1, 1]], crank: {")).find("exclude each other"), std::string::npos);
+  // the start angle in [0, 180) degrees: top dead centre, the usual start and the default, is in (it was refused,
+  // the default too); bottom dead centre is not (no stroke left)
+  EXPECT_EQ(error_of(replace(text, ", start_angle: 90", "")), "");
+  EXPECT_EQ(error_of(replace(text, "start_angle: 90", "start_angle: 0")), "");
+  EXPECT_NE(error_of(replace(text, "start_angle: 90", "start_angle: 180")).find("= 180 is out of range [0, 180)"), std::string::npos)
+      << error_of(replace(text, "start_angle: 90", "start_angle: 180"));
 }
 
 // damage: off without the section; each criterion on where its key is given, with or without a
