@@ -413,9 +413,7 @@ int run(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  std::ifstream prep_file(case_dir + "/prep.json");
-  if (!prep_file) throw rk::Error(case_dir + "/prep.json: not found (is this a case directory written by rkprep?)");
-  const nlohmann::json prep = nlohmann::json::parse(prep_file);
+  const nlohmann::json prep = rk::read_prep_json(case_dir);
   const int ranks = prep["ranks"].get<int>();
   std::int64_t frames = 0;  // the highest frame any rank wrote, plus one
   // no results at all: a case prepared and not solved yet, shown as it starts (frame 0 from the subdomains)

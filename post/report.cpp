@@ -37,11 +37,26 @@ std::string num(double x, int digits = 4) {
 std::string num(const nlohmann::json& j, int digits = 4) { return j.is_number() ? num(j.get<double>(), digits) : "-"; }
 }  // namespace
 
+nlohmann::json read_prep_json(const std::string& case_dir) {
+  const std::string path = case_dir + "/prep.json";
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": not found (is this a case directory written by rkprep?)");
+  try {
+    nlohmann::json prep = nlohmann::json::parse(in);
+    if (!prep.contains("ranks") || !prep["ranks"].is_number_integer() || prep["ranks"].get<int>() < 1)
+      throw Error(path + ": holds no rank count ('ranks'); re-run rkprep on the case");
+    return prep;
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path + ": not rkprep's JSON (" + e.what() + "); re-run rkprep on the case");
+  }
+}
+
 void write_report(const std::string& case_dir, const std::vector<std::string>& fill_lines,
                   const std::vector<std::string>* folds) {
   namespace fs = std::filesystem;
-  std::ifstream prep_file(case_dir + "/prep.json"), hist(case_dir + "/history.csv");
-  const auto prep = nlohmann::json::parse(prep_file);
+  std::ifstream hist(case_dir + "/history.csv");
+  if (!hist) throw Error(case_dir + "/history.csv: cannot be read (rksolve writes it: run rksolve on the case first)");
+  const nlohmann::json prep = read_prep_json(case_dir);
   // no solve.json: the run stopped on an error (a health check, a signal) or is still going
   const bool finished = fs::exists(case_dir + "/solve.json");
   const RunSummary solve = finished ? read_run_summary(case_dir + "/solve.json") : RunSummary{};
@@ -64,15 +79,25 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
   for (std::size_t k = 0; k + 1 < names.size(); ++k)
     if (names[k].ends_with(".stroke") && names[k + 1] == names[k].substr(0, names[k].size() - 7) + ".force")
       presses.push_back({names[k].substr(0, names[k].size() - 7), k});
-  while (std::getline(hist, line)) {
+  for (std::size_t line_no = 2; std::getline(hist, line); ++line_no) {
     if (line.empty()) continue;
     last = line;
     const auto row = split(line);
+    // a cell that is not a number: the file was cut or edited (one error naming the line and the column)
+    const auto number = [&](std::size_t k) {
+      char* end = nullptr;
+      const double x = std::strtod(row[k].c_str(), &end);
+      if (row[k].empty() || *end != '\0')
+        throw Error(case_dir + "/history.csv:" + std::to_string(line_no) + ": column '" + names[k] + "' holds '" + row[k] +
+                    "', not a number (a cut or edited file?); re-run rksolve on the case");
+      return x;
+    };
+    for (std::size_t k = 0; k < row.size() && k < names.size(); ++k) number(k);  // (the last row's cells are read below)
     for (auto& p : presses) {
       if (p.stroke + 1 >= row.size()) continue;
-      p.travel = std::max(p.travel, std::abs(std::stod(row[p.stroke])));
-      if (std::abs(std::stod(row[p.stroke + 1])) > std::abs(p.peak))
-        p.peak = std::stod(row[p.stroke + 1]), p.at = std::stod(row[p.stroke]);
+      const double stroke = number(p.stroke), force = number(p.stroke + 1);
+      p.travel = std::max(p.travel, std::abs(stroke));
+      if (std::abs(force) > std::abs(p.peak)) p.peak = force, p.at = stroke;
     }
   }
   const auto values = split(last);

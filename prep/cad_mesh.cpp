@@ -174,7 +174,7 @@ VolumeMesh mesh_with_gmsh(const MeshRequest& r) {
 }  // namespace
 
 VolumeMesh mesh_cad(const MeshRequest& r) {
-  if (!std::filesystem::exists(r.cad)) throw Error(r.cad + ": CAD file not found");
+  require_file(r.cad, "CAD file");
   try {
     return mesh_with_gmsh(r);
   } catch (const std::string& e) {  // gmsh 4.8 throws std::string

@@ -86,7 +86,11 @@ Soup gmsh_boundary(const Die& die, double spacing) {
 }  // namespace
 
 DieSurface mesh_die(const Die& die, double spacing) {
-  if (!std::filesystem::exists(die.cad)) throw Error("die '" + die.name + "': " + die.cad + ": CAD file not found");
+  try {
+    require_file(die.cad, "CAD file");
+  } catch (const Error& e) {
+    throw Error("die '" + die.name + "': " + e.what());
+  }
   Soup soup;
   try {
     soup = gmsh_boundary(die, spacing);

@@ -9,10 +9,13 @@
 
 namespace rk {
 
-inline constexpr std::array<const char*, 11> kCaseEntries = {
-    "sub", "prep.json", "scene.resolved.yaml",                    // rkprep
-    "results", "checkpoint", "history.csv", "solve.json", "stage.json",  // rksolve
-    "vtk", "plots", "report.md"};                                 // rkpost
+// rksolve's lock while it runs (solver/io/case_lock.hpp; removed at the run's end, left by a killed run)
+inline constexpr const char* kSolveLock = ".rksolve.lock";
+
+inline constexpr std::array<const char*, 12> kCaseEntries = {
+    "sub", "prep.json", "scene.resolved.yaml",                                 // rkprep
+    "results", "checkpoint", "history.csv", "solve.json", "stage.json", kSolveLock,  // rksolve
+    "vtk", "plots", "report.md"};                                              // rkpost
 
 // The entries of kCaseEntries present in `dir`, comma-separated ("" when none, or no such folder).
 inline std::string case_entries_in(const std::filesystem::path& dir) {

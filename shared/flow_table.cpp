@@ -33,6 +33,7 @@ Bracket bracket(const std::vector<double>& axis, double x) {
 }  // namespace
 
 FlowTable read_flow_table(const std::string& path) {
+  require_file(path, "flow stress table");
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot read the flow stress table");
   FlowTable t;

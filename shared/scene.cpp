@@ -539,6 +539,7 @@ void resolve_subcycling(Scene& s, YAML::Node resolved_time) {
 Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Override>& overrides, Side side) {
   const std::string name = file.string();
   YAML::Node root;
+  require_file(name, "scene file");
   try {
     root = YAML::LoadFile(name);
   } catch (const YAML::BadFile&) {

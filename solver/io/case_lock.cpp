@@ -2,29 +2,42 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 
+#include "case_layout.hpp"
 #include "error.hpp"
 
 namespace rk {
 
-CaseLock::CaseLock(const std::string& case_dir) {
-  const std::string path = case_dir + "/.rksolve.lock";
-  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) return;
-  if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
-  const int why = errno;
-  ::close(fd_);
-  fd_ = -1;
-  if (why == EWOULDBLOCK)
-    throw Error(case_dir + ": another rksolve is running in this case (it holds " + path +
-                "); wait for it to end or stop it, or solve a copy of the case");
+CaseLock::CaseLock(const std::string& case_dir) : path_(case_dir + "/" + kSolveLock) {
+  for (;;) {
+    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) return;
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      const int why = errno;
+      ::close(fd_);
+      fd_ = -1;
+      if (why == EWOULDBLOCK)
+        throw Error(case_dir + ": another rksolve is running in this case (it holds " + path_ +
+                    "); wait for it to end or stop it, or solve a copy of the case");
+      return;
+    }
+    // the file locked is the one at the path still (the run before may have removed it on its way out)
+    struct stat held {}, now {};
+    if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &now) == 0 && held.st_ino == now.st_ino && held.st_dev == now.st_dev)
+      return;
+    ::close(fd_);
+    fd_ = -1;
+  }
 }
 
 CaseLock::~CaseLock() {
-  if (fd_ >= 0) ::close(fd_);
+  if (fd_ < 0) return;
+  ::unlink(path_.c_str());  // (while still held: a run that opens it now finds it gone and makes its own)
+  ::close(fd_);
 }
 
 }  // namespace rk

@@ -1,7 +1,7 @@
 // One rksolve at a time in a case folder: two runs into one case interleaved their history rows and
 // left one run's solve.json beside the other's last frame, both exiting 0. Rank 0 holds an advisory
-// lock (flock) on CASE/.rksolve.lock for the run's life; the system drops it when the process ends,
-// however it ends, so a killed run leaves no stale lock behind (the empty file stays).
+// lock (flock) on CASE/.rksolve.lock for the run's life and removes the file at its end; the system
+// drops the lock when the process ends however it ends, so a killed run's file locks nothing.
 #pragma once
 #include <string>
 
@@ -17,6 +17,7 @@ class CaseLock {
   CaseLock& operator=(const CaseLock&) = delete;
 
  private:
+  std::string path_;
   int fd_ = -1;
 };
 

@@ -15,7 +15,11 @@ for prog in ("rkprep", "rksolve", "rkpost"):
     rkcase.check(p.stdout.startswith(f"{prog} (rkforge)"), f"{prog} --version: {p.stdout.strip()}")
 
 p = tools.run([tools.bin / "rkprep", tools.work / "nope.yaml", "--out", tools.work / "x"], expect_ok=False)
-rkcase.check(p.returncode != 0 and "nope.yaml: cannot open the scene file" in p.stderr, "rkprep: missing scene")
+rkcase.check(p.returncode != 0 and "nope.yaml: scene file not found" in p.stderr, "rkprep: missing scene")
+# a folder where a file belongs is said to be one (it read as "internal error: basic_filebuf::underflow")
+p = tools.run([tools.bin / "rkprep", tools.work, "--out", tools.work / "x"], expect_ok=False)
+rkcase.check(p.returncode != 0 and f"{tools.work}: a folder, not a scene file" in p.stderr and "internal error" not in p.stderr,
+             f"rkprep: a folder for the scene: {p.stderr.strip()}")
 p = tools.run([tools.bin / "rkpost", tools.work / "not_a_case"], expect_ok=False)
 rkcase.check(p.returncode != 0 and "prep.json: not found" in p.stderr, "rkpost: not a case directory")
 case = tools.case("cli_bad_set")
@@ -86,6 +90,18 @@ tools.prep(upset, 1, scene=rkcase.ROOT / "geometry" / "upsetting" / "scene_frict
            sets=["discretization.spacing=2.5e-3"])
 tools.solve(upset, 1, sets=["time.end=1.2e-3"])
 tools.post(upset)
+# rkpost on a case whose files were cut or emptied: one error naming the file (and the line), no
+# "internal error" (they read "stod" and a raw JSON parse error)
+from shutil import copytree  # noqa: E402
+cut = tools.case("upsetting_cut")
+copytree(upset, cut)
+rows = (cut / "history.csv").read_text().splitlines()
+(cut / "history.csv").write_text("\n".join(rows[:5] + ["0.0006,1e-07,0.00" + rows[5][rows[5].index(",", 20):].replace(",", ",x", 1)]) + "\n")
+for damage, says in (("history", f"{cut / 'history.csv'}:6: column "), ("prep", f"{cut / 'prep.json'}: not rkprep's JSON")):
+    if damage == "prep":
+        (cut / "prep.json").write_text("")
+    p = tools.post(cut, expect_ok=False)
+    rkcase.check(p.returncode != 0 and says in p.stderr and "internal error" not in p.stderr, f"rkpost, {damage} damaged: {p.stderr.strip()}")
 if not scripts_too:  # the rest of this file checks the scripts
     raise SystemExit(0)
 
