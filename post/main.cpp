@@ -381,6 +381,7 @@ std::vector<int> select_frames(const std::string& list, int frames) {
                       ", or -1 for the last)");
     if (std::find(out.begin(), out.end(), int(f)) == out.end()) out.push_back(int(f));
   }
+  if (out.empty()) throw rk::Error("--frames: '" + list + "' names no frame (all, or a list like 0,4,-1)");
   std::sort(out.begin(), out.end());
   return out;
 }
@@ -443,20 +444,24 @@ int run(int argc, char** argv) {
   std::vector<rk::DieSurface> dies;
   if (!scene.dies.empty())
     dies = rk::read_subdomain(rk::subdomain_path(case_dir, 0), 0, ranks, scene.prep_hash).dies;
-  // the temperature where the material has one (and the run wrote it)
-  int thermal = 0;  // the thermal fields the frames hold, from rank 0's first frame
-  if (solved && scene.material.thermal()) {
-    thermal = int(std::size(rk::kThermalFields));
-    const std::string first = rk::result_frame_path(case_dir, 0, 0);
-    if (fs::exists(first) && !rk::H5File(first, rk::H5File::Mode::read).exists(rk::result_frame_group(0) + rk::kThermalFields[1].name))
-      thermal = 1;
+  // which fields the frames hold, from rank 0's first frame that opens (a damaged one is skipped below)
+  std::optional<rk::H5File> first;
+  int first_frame = 0;
+  for (; solved && first_frame < int(frames) && !first; ++first_frame) {
+    const std::string path = rk::result_frame_path(case_dir, 0, first_frame);
+    try {
+      if (fs::exists(path)) first.emplace(path, rk::H5File::Mode::read);
+    } catch (const rk::Error&) {
+    }
   }
+  const auto holds = [&](const char* name) { return first && first->exists(rk::result_frame_group(first_frame - 1) + name); };
+  // the temperature where the material has one (and the run wrote it)
+  int thermal = 0;
+  if (solved && scene.material.thermal()) thermal = holds(rk::kThermalFields[1].name) || !first ? int(std::size(rk::kThermalFields)) : 1;
   // the damage fields where the frames hold them (a `damage` section, in the scene or set at rksolve)
   int damage = 0;
-  if (solved && fs::exists(rk::result_frame_path(case_dir, 0, 0))) {
-    const rk::H5File first(rk::result_frame_path(case_dir, 0, 0), rk::H5File::Mode::read);
-    while (damage < int(std::size(rk::kDamageFields)) && first.exists(rk::result_frame_group(0) + rk::kDamageFields[damage].name)) ++damage;
-  }
+  while (damage < int(std::size(rk::kDamageFields)) && holds(rk::kDamageFields[damage].name)) ++damage;
+  first.reset();
   const std::vector<Field> fields = select_fields(field_list, thermal, damage);
   const std::vector<int> chosen = select_frames(frame_list, solved ? int(frames) : 1);
   // the whole part's cells: in every merged frame; with --partitioned only to find the folds (each

@@ -103,7 +103,8 @@ int run(int argc, char** argv) {
           "RANKS >= 1"));
   app.add_option("--out", out, "case directory to write")->required();
   app.add_option("--set", sets, "override a scene key: key.path=value (repeatable)");
-  app.add_option("--partitioner", partitioner, "metis-kway | metis-recursive");
+  app.add_option("--partitioner", partitioner, "metis-kway | metis-recursive")
+      ->check(CLI::IsMember({"metis-kway", "metis-recursive"}));
   app.add_flag("--quiet", quiet, "print nothing but errors");
   bool force = false;
   app.add_flag("--force", force, "replace the files of a case already in --out (its results, history, checkpoints)");

@@ -20,8 +20,12 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Where a node came from: "scene.yaml:12" or "scene.yaml (--set a.b)".
+// Where a node came from: "scene.yaml:12", or "scene.yaml (--set a.b)" for a value given on the command
+// line (parsed on its own, it is marked at the start of a document: no value of a scene's key is, as
+// its key stands before it; it read as the scene's line 1)
 std::string where(const std::string& file, const YAML::Node& node, const std::string& path) {
+  const bool overridden = node && !node.IsMap() && node.Mark().line == 0 && node.Mark().column == 0;
+  if (overridden) return file + " (--set " + path + ")";
   if (node && node.Mark().line >= 0) return file + ":" + std::to_string(node.Mark().line + 1);
   return file + " (key '" + path + "')";
 }
@@ -321,8 +325,15 @@ DieMotion read_motion(Section& owner, bool press) {
         throw Error(m.where_of(key) + ": a press drives dies only; a prescribed face follows a time law");
       if (++kinds > 1) throw Error(m.where_of(key) + ": 'curve', 'crank', 'blow' and 'hydraulic' exclude each other");
     }
+  // a curve, a crank or a blow sets the die's speed itself: a `speed` beside it is refused by name (0,
+  // as the resolved scene records it, is none)
+  const auto no_speed = [&](const std::string& by) {
+    const double speed = m.number("speed", 0.0, {});
+    if (speed != 0) throw Error(m.where_of("speed") + ": the die's speed follows its '" + by + "'; give one or the other");
+    return speed;
+  };
   if (m.get("blow", false)) {  // a hammer or screw press
-    motion.speed = m.number("speed", 0.0, {0, 0});
+    motion.speed = no_speed("blow");
     Section b = m.section("blow", true);
     DieMotion::Ram& r = motion.ram;
     r.energy = b.number("energy", std::nullopt, {0, 1e9, true, false});
@@ -340,7 +351,7 @@ DieMotion read_motion(Section& owner, bool press) {
     r.stroke = h.number("stroke", 0.0, {0, 100});
     h.done();
   } else if (m.get("crank", false)) {  // a mechanical press
-    motion.speed = m.number("speed", 0.0, {0, 0});
+    motion.speed = no_speed("crank");
     Section c = m.section("crank", true);
     DieMotion::Crank& k = motion.crank;
     k.radius = c.number("radius", std::nullopt, {0, 10, true, false});
@@ -351,7 +362,7 @@ DieMotion read_motion(Section& owner, bool press) {
     k.start_angle = c.number("start_angle", 0.0, {0, 180, false, true}) * M_PI / 180;
     c.done();
   } else if (!motion.curve.empty()) {
-    motion.speed = m.number("speed", 0.0, {0, 0});
+    motion.speed = no_speed("curve");
   } else {
     motion.speed = m.number("speed", std::nullopt, {0, 1e4});
   }
@@ -657,6 +668,10 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
         r.temperature = p.number("temperature", std::nullopt, {0, melts ? s.material.melting_temperature : 1e4, true, false});
         s.initial.temperature_regions.push_back(r);
       });
+    } else {  // (else 'unknown key', for keys that scene.md lists)
+      for (const char* key : {"temperature", "temperature_regions"})
+        if (const YAML::Node v = ic.get(key, false); v && !v.IsNull())
+          throw Error(ic.where_of(key) + " needs a temperature: 'material.specific_heat' (or a material library with it)");
     }
     ic.done();
   }

@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
   app.add_option("--set", sets, "override a solver-side scene key: key.path=value (repeatable)");
   app.add_flag("--quiet", options.quiet, "print nothing but errors");
   app.add_option("--progress", options.progress_s, "seconds between progress lines (default 2 on a terminal, 10 in a log)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1e-3, 1e6, "a number of seconds in [0.001, 1e6]"));
   auto* restart = app.add_flag("--restart", options.restart, "continue from the newest checkpoint in CASE/checkpoint");
   app.add_option("--from", options.from,
                  "a stage of a chain: start from the final state of the case PREVIOUS (the same part; other dies, "

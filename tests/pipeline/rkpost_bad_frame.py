@@ -37,6 +37,15 @@ rkcase.check("frame 3 skipped" in p.stderr and "rank_0000/frame_00003.h5: missin
 merged = [d.get("file") for d in ET.parse(case / "vtk" / "case.pvd").getroot().iter("DataSet")]
 rkcase.check(merged == ["frame_00000.vtu", "frame_00001.vtu", "frame_00004.vtu"],
              f"the other 3 of 5 frames are merged: {merged}")
+# frame 0 cut short on rank 0 as well (rkpost read its fields' list from it and stopped, exit 1)
+damaged = tools.case("rkpost_bad_frame_0")
+shutil.copytree(case, damaged)
+first = damaged / "results" / "rank_0000" / "frame_00000.h5"
+first.write_bytes(first.read_bytes()[:100])
+p = tools.post(damaged, expect_ok=False)
+merged = [d.get("file") for d in ET.parse(damaged / "vtk" / "case.pvd").getroot().iter("DataSet")]
+rkcase.check(p.returncode == 0 and "frame 0 skipped" in p.stderr and merged == ["frame_00001.vtu", "frame_00004.vtu"],
+             f"a damaged frame 0 is skipped as the others: exit {p.returncode}, {merged}, {p.stderr.strip()[:300]}")
 
 # Another case's results beside new subdomains (copied in by hand: rkprep itself refuses such a
 # folder): rkpost merges none of them and says why, with a non-zero exit.

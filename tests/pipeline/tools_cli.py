@@ -90,6 +90,14 @@ tools.prep(upset, 1, scene=rkcase.ROOT / "geometry" / "upsetting" / "scene_frict
            sets=["discretization.spacing=2.5e-3"])
 tools.solve(upset, 1, sets=["time.end=1.2e-3"])
 tools.post(upset)
+# options that name nothing or nothing known: refused, the case untouched (--frames "" wrote an empty case.pvd, exit 0)
+pvd = (upset / "vtk" / "case.pvd").read_bytes()
+p = tools.run([tools.bin / "rkpost", upset, "--frames", ""], expect_ok=False)
+rkcase.check(p.returncode != 0 and "--frames: '' names no frame" in p.stderr and (upset / "vtk" / "case.pvd").read_bytes() == pvd,
+             f"rkpost --frames '': {p.stderr.strip()}")
+p = tools.run([tools.bin / "rkprep", rkcase.TAYLOR, "--out", tools.work / "bogus", "--partitioner", "bogus"], expect_ok=False)
+rkcase.check(p.returncode != 0 and "--partitioner: bogus not in {metis-kway,metis-recursive}" in p.stderr,
+             f"rkprep --partitioner bogus (1 rank): {p.stderr.strip()}")
 # rkpost on a case whose files were cut or emptied: one error naming the file (and the line), no
 # "internal error" (they read "stod" and a raw JSON parse error)
 from shutil import copytree  # noqa: E402

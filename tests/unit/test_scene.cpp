@@ -176,6 +176,12 @@ TEST(Scene, OverridesApplyAndAreValidated) {
                 .find("used by rkprep; re-run rkprep"),
             std::string::npos);
   EXPECT_THROW(rk::parse_override("time.cfl"), rk::Error);
+  // a bad value from the command line is said to be one (it read as the scene file's line 1)
+  const auto typed = error_of(kGood, {rk::parse_override("material.density=abc")});
+  EXPECT_NE(typed.find(".yaml (--set material.density): key 'material.density' must be a number"), std::string::npos) << typed;
+  const auto ranged = error_of(kGood, {rk::parse_override("time.cfl=-1")});
+  EXPECT_NE(ranged.find(".yaml (--set time.cfl): key 'time.cfl' = -1 is out of range"), std::string::npos) << ranged;
+  EXPECT_NE(error_of(replace(kGood, "8930", "abc")).find(".yaml:8: key 'material.density' must be a number"), std::string::npos);
 }
 
 // Multi-rate steps: auto or a power of two up to 16, and what they are not built for refused naming the key
@@ -305,6 +311,9 @@ TEST(Scene, TheFrequencysStepWithAPenaltyContactIsWarnedByItsKey) {
 }
 
 TEST(Scene, ThermalKeysNeedTheirPhysics) {
+  const auto start = error_of(kGood + std::string("initial_conditions:\n  temperature: 600\n"));
+  EXPECT_NE(start.find("key 'initial_conditions.temperature' needs a temperature: 'material.specific_heat'"), std::string::npos)
+      << start;
   EXPECT_NE(error_of(replace(kGood, "  yield_stress: 400.0e6\n", "  yield_stress: 400.0e6\n  conductivity: 45\n"))
                 .find("'material.conductivity' needs 'material.specific_heat'"),
             std::string::npos);
@@ -480,6 +489,9 @@ TEST(Scene, CrankPressFollowsTheSliderCrankLaw) {
   EXPECT_NE(error_of(replace(text, "end: 1.0e-6", "end: 0.3")).find("'time.end' = 0.3 s runs past the bottom dead centre of die 'top' at 0.25 s"),
             std::string::npos);
   EXPECT_NE(error_of(replace(text, "crank: {", "curve: [[0, 0], [1, 1]], crank: {")).find("exclude each other"), std::string::npos);
+  // a speed beside the crank: refused by name (it read "'speed' = 1 is out of range [0, 0]")
+  const auto both = error_of(replace(text, "crank: {", "speed: 1, crank: {"));
+  EXPECT_NE(both.find("motion.speed': the die's speed follows its 'crank'; give one or the other"), std::string::npos) << both;
   // the start angle in [0, 180) degrees: top dead centre, the usual start and the default, is in (it was refused,
   // the default too); bottom dead centre is not (no stroke left)
   EXPECT_EQ(error_of(replace(text, ", start_angle: 90", "")), "");
