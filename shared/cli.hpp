@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,8 @@ int guarded_main(const char* program, Run run) {
     return run();
   } catch (const Error& e) {
     std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+  } catch (const std::filesystem::filesystem_error& e) {  // a folder or file the system refused: named, with why
+    std::fprintf(stderr, "%s: error: %s: %s\n", program, e.path1().c_str(), e.code().message().c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: internal error: %s\n", program, e.what());
   }

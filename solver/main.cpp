@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <cstdio>
+#include <filesystem>
 
 #include "cli.hpp"
 #include "parallel/comm.hpp"
@@ -39,6 +40,9 @@ int main(int argc, char** argv) {
     } catch (const rk::Error& e) {
       // Errors reach every rank together (Comm::check); input errors are the same on every rank.
       if (comm.rank() == 0) std::fprintf(stderr, "rksolve: error: %s\n", e.what());
+    } catch (const std::filesystem::filesystem_error& e) {  // a folder or file the system refused this rank
+      std::fprintf(stderr, "rksolve: rank %d: error: %s: %s\n", comm.rank(), e.path1().c_str(), e.code().message().c_str());
+      MPI_Abort(MPI_COMM_WORLD, 1);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "rksolve: rank %d: internal error: %s\n", comm.rank(), e.what());
       MPI_Abort(MPI_COMM_WORLD, 2);
