@@ -81,6 +81,7 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
       presses.push_back({names[k].substr(0, names[k].size() - 7), k});
   for (std::size_t line_no = 2; std::getline(hist, line); ++line_no) {
     if (line.empty()) continue;
+    const std::string previous = last;
     last = line;
     const auto row = split(line);
     // a cell that is not a number: the file was cut or edited (one error naming the line and the column)
@@ -92,7 +93,14 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
                     "', not a number (a cut or edited file?); re-run rksolve on the case");
       return x;
     };
-    for (std::size_t k = 0; k < row.size() && k < names.size(); ++k) number(k);  // (the last row's cells are read below)
+    try {
+      for (std::size_t k = 0; k < row.size() && k < names.size(); ++k) number(k);  // (the last row's cells are read below)
+    } catch (const Error& e) {
+      if (hist.peek() != std::char_traits<char>::eof()) throw;
+      std::fprintf(stderr, "rkpost: warning: %s; the row is left out (cut at the end: a full disk, or a run still going)\n", e.what());
+      last = previous;
+      break;
+    }
     for (auto& p : presses) {
       if (p.stroke + 1 >= row.size()) continue;
       const double stroke = number(p.stroke), force = number(p.stroke + 1);

@@ -20,12 +20,16 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Where a node came from: "scene.yaml:12", or "scene.yaml (--set a.b)" for a value given on the command
-// line (parsed on its own, it is marked at the start of a document: no value of a scene's key is, as
-// its key stands before it; it read as the scene's line 1)
+// The key paths that --set gave while a scene is read (load_scene_checked), so that where() names them
+// (a value parsed on its own is marked at its own line 1: it read as the scene's)
+std::set<std::string>& overridden_paths() {
+  static std::set<std::string> paths;
+  return paths;
+}
+
+// Where a node came from: "scene.yaml:12", or "scene.yaml (--set a.b)" for a value given on the command line.
 std::string where(const std::string& file, const YAML::Node& node, const std::string& path) {
-  const bool overridden = node && !node.IsMap() && node.Mark().line == 0 && node.Mark().column == 0;
-  if (overridden) return file + " (--set " + path + ")";
+  if (overridden_paths().count(path)) return file + " (--set " + path + ")";
   if (node && node.Mark().line >= 0) return file + ":" + std::to_string(node.Mark().line + 1);
   return file + " (key '" + path + "')";
 }
@@ -116,13 +120,14 @@ class Section {
     return s;
   }
 
-  // An entry's `name`: it heads columns of history.csv and tracks.csv and names the entry in
-  // messages, so letters, digits, '_' and '-' only (a comma split the columns; an empty name gave '.force').
+  // An entry's `name`: it heads columns of history.csv and tracks.csv and names the entry in messages,
+  // so not empty and without a comma, a quote or a control character (a comma split the columns; an
+  // empty name gave '.force')
   std::string name(std::optional<std::string> fallback) {
     const std::string n = text("name", std::move(fallback));
-    if (n.empty() || !std::all_of(n.begin(), n.end(), [](unsigned char c) { return std::isalnum(c) || c == '_' || c == '-'; }))
+    if (n.empty() || std::any_of(n.begin(), n.end(), [](unsigned char c) { return c == ',' || c == '"' || c < 0x20 || c == 0x7f; }))
       throw Error(where_of("name") + " = '" + n +
-                  "': a name heads columns of history.csv and tracks.csv: letters, digits, '_' and '-' only");
+                  "': a name heads columns of history.csv and tracks.csv: not empty, no comma, quote or control character");
     return n;
   }
 
@@ -386,6 +391,10 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
 }
 
 Scene load_scene(const std::filesystem::path& file, const std::vector<Override>& overrides, Side side) {
+  struct Paths {  // this read's --set paths only
+    Paths() { overridden_paths().clear(); }
+    ~Paths() { overridden_paths().clear(); }
+  } paths;
   try {
     return load_scene_checked(file, overrides, side);
   } catch (const YAML::Exception& e) {  // anything yaml-cpp refuses that the checks above did not name
@@ -575,6 +584,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     if (side == Side::solve && prep_key)
       throw Error("--set " + o.path + ": this key is used by rkprep; re-run rkprep with it");
     apply_override(root, o, name);
+    overridden_paths().insert(o.path);
   }
 
   Scene s;
@@ -1025,7 +1035,7 @@ std::vector<std::string> material_warnings(const Scene& s) {
   };
   check("material", s.material);
   for (std::size_t b = 0; b < s.bodies.size(); ++b)
-    if (s.bodies[b].material) check("bodies[" + std::to_string(b) + "].material", *s.bodies[b].material);
+    if (s.bodies[b].material) check("the material of body '" + s.bodies[b].name + "'", *s.bodies[b].material);
   return out;
 }
 
@@ -1033,12 +1043,12 @@ std::vector<std::string> material_warnings(const Scene& s) {
 // wrote a frame every step, 2 905 frames and 444 MB for 185 particles)
 std::vector<std::string> output_warnings(const Scene& s) {
   std::vector<std::string> out;
-  const double frames = s.time.end / s.time.output_interval;
+  const double frames = (s.time.end - s.time.start) / s.time.output_interval;  // (a stage's own)
   if (frames > 1000) {
     char text[320];
-    std::snprintf(text, sizeof text, "time.output_interval = %g s asks for %.3g frames over time.end = %g s (a frame is "
+    std::snprintf(text, sizeof text, "time.output_interval = %g s asks for %.3g frames over the run's %g s (a frame is "
                   "written at most once a step, each of every particle's fields): a slip of units or of the exponent?",
-                  s.time.output_interval, frames, s.time.end);
+                  s.time.output_interval, frames, s.time.end - s.time.start);
     out.push_back(text);
   }
   return out;

@@ -262,6 +262,7 @@ struct Scene {
 
   struct Time {
     double end = 0;                // s
+    double start = 0;              // s: a stage's start on its chain's clock (set by rksolve; 0 in a scene)
     double cfl = 0.9;              // fraction of the stable step (default 0.5 when the scene has dies)
     // the stable step's estimate (solver/time_step.hpp): "cells" from each cell's edge and its points'
     // stretch, or "frequency" from the highest frequency of the discrete system (solver/highest_frequency.hpp)

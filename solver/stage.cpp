@@ -112,6 +112,7 @@ StageLink begin_stage(const std::string& from_arg, const std::string& case_dir, 
 
 void apply_stage(const StageLink& link, Scene& scene) {
   scene.time.end += link.start;
+  scene.time.start = link.start;
   for (std::size_t k = 0; k < scene.dies.size(); ++k) scene.dies[k].motion.start = link.die_start[k];
 }
 

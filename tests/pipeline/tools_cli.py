@@ -104,7 +104,8 @@ from shutil import copytree  # noqa: E402
 cut = tools.case("upsetting_cut")
 copytree(upset, cut)
 rows = (cut / "history.csv").read_text().splitlines()
-(cut / "history.csv").write_text("\n".join(rows[:5] + ["0.0006,1e-07,0.00" + rows[5][rows[5].index(",", 20):].replace(",", ",x", 1)]) + "\n")
+bad = "0.0006,1e-07,0.00" + rows[5][rows[5].index(",", 20):].replace(",", ",x", 1)
+(cut / "history.csv").write_text("\n".join(rows[:5] + [bad] + rows[6:8]) + "\n")
 for damage, says in (("history", f"{cut / 'history.csv'}:6: column "), ("prep", f"{cut / 'prep.json'}: not rkprep's JSON")):
     if damage == "prep":
         (cut / "prep.json").write_text("")

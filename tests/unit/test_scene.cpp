@@ -108,7 +108,7 @@ TEST(Scene, NamesAreColumnHeadsUniqueInTheirList) {
   EXPECT_NE(empty.find("= '': a name heads columns"), std::string::npos) << empty;
   const auto twice = error_of(walls + "    - {name: floor, point: [0, 0, 0.03], normal: [0, 0, -1]}\n");
   EXPECT_NE(twice.find("two rigid walls named 'floor'"), std::string::npos) << twice;
-  EXPECT_EQ(error_of(replace(walls, "name: floor", "name: floor_2-a")), "");
+  EXPECT_EQ(error_of(replace(walls, "name: floor", "name: 'floor 2.a'")), "");  // (cases named so before still read)
   const std::string die = "  - {name: die, cad: die.geo, unit: mm, motion: {direction: [0, 0, -1], speed: 1}}\n";
   const std::string dies = std::string(kGood) + "dies:\n" + die;
   EXPECT_EQ(error_of(dies), "");
@@ -182,6 +182,8 @@ TEST(Scene, OverridesApplyAndAreValidated) {
   const auto ranged = error_of(kGood, {rk::parse_override("time.cfl=-1")});
   EXPECT_NE(ranged.find(".yaml (--set time.cfl): key 'time.cfl' = -1 is out of range"), std::string::npos) << ranged;
   EXPECT_NE(error_of(replace(kGood, "8930", "abc")).find(".yaml:8: key 'material.density' must be a number"), std::string::npos);
+  const auto first_line = error_of("colour: red\n" + std::string(kGood), {rk::parse_override("time.cfl=0.5")});
+  EXPECT_NE(first_line.find(".yaml:1: unknown key 'colour'"), std::string::npos) << first_line;  // (not "--set colour")
 }
 
 // Multi-rate steps: auto or a power of two up to 16, and what they are not built for refused naming the key
