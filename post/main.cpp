@@ -446,15 +446,15 @@ int run(int argc, char** argv) {
     dies = rk::read_subdomain(rk::subdomain_path(case_dir, 0), 0, ranks, scene.prep_hash).dies;
   // which fields the frames hold, from rank 0's first frame that opens (a damaged one is skipped below)
   std::optional<rk::H5File> first;
-  int first_frame = 0;
-  for (; solved && first_frame < int(frames) && !first; ++first_frame) {
-    const std::string path = rk::result_frame_path(case_dir, 0, first_frame);
+  int first_frame = -1;
+  for (int f = 0; solved && f < int(frames) && !first; ++f) {
+    const std::string path = rk::result_frame_path(case_dir, 0, f);
     try {
-      if (fs::exists(path)) first.emplace(path, rk::H5File::Mode::read);
+      if (fs::exists(path)) first.emplace(path, rk::H5File::Mode::read), first_frame = f;
     } catch (const rk::Error&) {
     }
   }
-  const auto holds = [&](const char* name) { return first && first->exists(rk::result_frame_group(first_frame - 1) + name); };
+  const auto holds = [&](const char* name) { return first && first->exists(rk::result_frame_group(first_frame) + name); };
   // the temperature where the material has one (and the run wrote it)
   int thermal = 0;
   if (solved && scene.material.thermal()) thermal = holds(rk::kThermalFields[1].name) || !first ? int(std::size(rk::kThermalFields)) : 1;

@@ -81,8 +81,6 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
       presses.push_back({names[k].substr(0, names[k].size() - 7), k});
   for (std::size_t line_no = 2; std::getline(hist, line); ++line_no) {
     if (line.empty()) continue;
-    const std::string previous = last;
-    last = line;
     const auto row = split(line);
     // a cell that is not a number: the file was cut or edited (one error naming the line and the column)
     const auto number = [&](std::size_t k) {
@@ -98,9 +96,9 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
     } catch (const Error& e) {
       if (hist.peek() != std::char_traits<char>::eof()) throw;
       std::fprintf(stderr, "rkpost: warning: %s; the row is left out (cut at the end: a full disk, or a run still going)\n", e.what());
-      last = previous;
       break;
     }
+    last = line;
     for (auto& p : presses) {
       if (p.stroke + 1 >= row.size()) continue;
       const double stroke = number(p.stroke), force = number(p.stroke + 1);

@@ -130,6 +130,14 @@ class Section {
                   "': a name heads columns of history.csv and tracks.csv: not empty, no comma, quote or control character");
     return n;
   }
+  // and one unique among the entries of `lists` (an entry's name heads its own columns)
+  template <class... Lists>
+  std::string unique_name(std::optional<std::string> fallback, const std::string& what, const Lists&... lists) {
+    const std::string n = name(std::move(fallback));
+    if ((std::any_of(lists.begin(), lists.end(), [&](const auto& other) { return other.name == n; }) || ...))
+      throw Error(where_of("name") + ": two " + what + " named '" + n + "'");
+    return n;
+  }
 
   Vec3 vec3(const std::string& key, std::optional<Vec3> fallback, bool unit = false) {
     YAML::Node v = get(key, !fallback.has_value());
@@ -697,10 +705,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     });
     auto face = [&](Section& p, const std::string& kind, std::size_t count) {
       EssentialFace f;
-      f.name = p.name(kind + std::to_string(count));
-      for (const auto* list : {&s.fixed_faces, &s.prescribed_faces})
-        for (const EssentialFace& other : *list)
-          if (other.name == f.name) throw Error(p.where_of("name") + ": two faces named '" + f.name + "' (their history columns would clash)");
+      f.name = p.unique_name(kind + std::to_string(count), "faces", s.fixed_faces, s.prescribed_faces);
       f.point = p.vec3("point", std::nullopt);
       f.normal = p.vec3("normal", std::nullopt, true);
       return f;
@@ -713,9 +718,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     });
     b.list("rigid_walls", [&](Section& p) {
       RigidWall w;
-      w.name = p.name("wall" + std::to_string(s.rigid_walls.size()));
-      for (const RigidWall& other : s.rigid_walls)
-        if (other.name == w.name) throw Error(p.where_of("name") + ": two rigid walls named '" + w.name + "' (their history columns would clash)");
+      w.name = p.unique_name("wall" + std::to_string(s.rigid_walls.size()), "rigid walls", s.rigid_walls);
       w.point = p.vec3("point", std::nullopt);
       w.normal = p.vec3("normal", std::nullopt, true);
       s.rigid_walls.push_back(w);
@@ -725,9 +728,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
   std::vector<SymmetryPlane> planes = s.symmetry_planes;
   top.list("dies", [&](Section& d) {
     Die die;
-    die.name = d.name(std::nullopt);
-    for (const Die& other : s.dies)
-      if (other.name == die.name) throw Error(d.where_of("name") + ": two dies named '" + die.name + "' (their history columns would clash)");
+    die.name = d.unique_name(std::nullopt, "dies", s.dies);
     std::filesystem::path p(d.text("cad", std::nullopt));
     die.cad = (p.is_absolute() ? p : (s.dir / p)).lexically_normal().string();
     d.record("cad", die.cad);
@@ -870,26 +871,19 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     Section o = top.section("output");
     s.output.checkpoint_steps = o.integer("checkpoint_steps", int(s.output.checkpoint_steps), 0, 1000000000);
     s.output.checkpoint_minutes = o.number("checkpoint_minutes", s.output.checkpoint_minutes, {0, 1e6});
-    // an entry's name, `fallback` where it has none, unique in its list
-    auto unique_name = [&](Section& p, const auto& list, const char* key, const std::string& fallback) {
-      const std::string n = p.name(fallback);
-      for (const auto& other : list)
-        if (other.name == n) throw Error(name + ": key 'output." + key + "': two entries named '" + n + "'");
-      return n;
-    };
     auto numbered = [](const char* stem, std::size_t k) {  // (appended: "p" + to_string() trips GCC 12's -Wrestrict)
       std::string n = stem;
       return n += std::to_string(k);
     };
     o.list("track", [&](Section& p) {
       Scene::Output::Track t;
-      t.name = unique_name(p, s.output.track, "track", numbered("p", s.output.track.size()));
+      t.name = p.unique_name(numbered("p", s.output.track.size()), "tracks", s.output.track);
       t.point = p.vec3("point", std::nullopt);
       s.output.track.push_back(t);
     });
     o.list("flow_lines", [&](Section& p) {
       Scene::Output::FlowLines f;
-      f.name = unique_name(p, s.output.flow_lines, "flow_lines", numbered("flow_lines", s.output.flow_lines.size()));
+      f.name = p.unique_name(numbered("flow_lines", s.output.flow_lines.size()), "flow lines", s.output.flow_lines);
       f.point = p.vec3("point", std::nullopt);
       f.normal = p.vec3("normal", std::nullopt, true);
       f.direction = p.vec3("direction", std::nullopt, true);

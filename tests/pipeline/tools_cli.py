@@ -106,6 +106,12 @@ copytree(upset, cut)
 rows = (cut / "history.csv").read_text().splitlines()
 bad = "0.0006,1e-07,0.00" + rows[5][rows[5].index(",", 20):].replace(",", ",x", 1)
 (cut / "history.csv").write_text("\n".join(rows[:5] + [bad] + rows[6:8]) + "\n")
+# the same row as the file's last (cut by a full disk, or read while rksolve writes): left out, with a warning
+(cut / "history.csv").write_text("\n".join(rows[:5] + [bad]) + "\n")
+p = tools.post(cut)
+rkcase.check("rkpost: warning: " in p.stderr and "history.csv:6: column " in p.stderr and "the row is left out" in p.stderr,
+             f"rkpost, the last history row cut: {p.stderr.strip()[:200]}")
+(cut / "history.csv").write_text("\n".join(rows[:5] + [bad] + rows[6:8]) + "\n")
 for damage, says in (("history", f"{cut / 'history.csv'}:6: column "), ("prep", f"{cut / 'prep.json'}: not rkprep's JSON")):
     if damage == "prep":
         (cut / "prep.json").write_text("")
