@@ -6,9 +6,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <string_view>
 
 #include "cad_mesh.hpp"
 #include "case_layout.hpp"
+#include "case_lock.hpp"
 #include "cli.hpp"
 #include "die_surface.hpp"
 #include "discretize.hpp"
@@ -119,12 +121,16 @@ int run(int argc, char** argv) {
   const rk::Scene scene = rk::load_scene(scene_file, rk::parse_overrides(sets), rk::Side::prep);
   check_case_folder_writable(out);
   for (const std::string& w : rk::scene_warnings(scene)) std::fprintf(stderr, "rkprep: warning: %s\n", w.c_str());
-  // a new case never lies beside another's results: refused, or with --force those files go first
-  if (const std::string old = rk::case_entries_in(out); !old.empty()) {
+  // a new case never lies beside another's results: refused, or with --force those files go first;
+  // never under a running rksolve (the lock, held to the end of the prep)
+  const std::string old = rk::case_entries_in(out);
+  const rk::CaseLock lock(out);
+  if (!old.empty()) {
     if (!force)
       throw rk::Error(out + ": holds a case already (" + old +
                       "); choose another --out, or pass --force to replace that case's files");
-    for (const char* e : rk::kCaseEntries) fs::remove_all(fs::path(out) / e);
+    for (const char* e : rk::kCaseEntries)
+      if (std::string_view(e) != rk::kSolveLock) fs::remove_all(fs::path(out) / e);  // (the lock: this one's now)
   }
   rk::VolumeMesh mesh = timer.run("mesh", [&] {
     rk::VolumeMesh m = rk::mesh_cad({scene.geometry.cad, scene.geometry.unit, scene.discretization.spacing});

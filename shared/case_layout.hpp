@@ -9,7 +9,8 @@
 
 namespace rk {
 
-// rksolve's lock while it runs (solver/io/case_lock.hpp; removed at the run's end, left by a killed run)
+// the lock of the program writing the case, rksolve or rkprep (case_lock.hpp; removed at its end, left by a
+// killed run)
 inline constexpr const char* kSolveLock = ".rksolve.lock";
 
 inline constexpr std::array<const char*, 12> kCaseEntries = {

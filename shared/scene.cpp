@@ -130,12 +130,23 @@ class Section {
                   "': a name heads columns of history.csv and tracks.csv: not empty, no comma, quote or control character");
     return n;
   }
-  // and one unique among the entries of `lists` (an entry's name heads its own columns)
+  // and one unique among the entries of `lists`: an entry's name heads its own columns, so dies, rigid
+  // walls and faces share one set of names. Without a `name` key the entry is called `stem` numbered
+  // from `first`, the first such name not taken (a wall named 'wall1' leaves the next unnamed one 'wall2').
   template <class... Lists>
-  std::string unique_name(std::optional<std::string> fallback, const std::string& what, const Lists&... lists) {
+  std::string unique_name(std::optional<std::string> stem, std::size_t first, const std::string& what,
+                          const Lists&... lists) {
+    auto taken = [&](const std::string& n) {
+      return (std::any_of(lists.begin(), lists.end(), [&](const auto& other) { return other.name == n; }) || ...);
+    };
+    std::optional<std::string> fallback;
+    for (std::size_t k = first; stem && !fallback; ++k) {
+      std::string n = *stem;  // (appended: stem + to_string() trips GCC 12's -Wrestrict)
+      n += std::to_string(k);
+      if (!taken(n)) fallback = n;
+    }
     const std::string n = name(std::move(fallback));
-    if ((std::any_of(lists.begin(), lists.end(), [&](const auto& other) { return other.name == n; }) || ...))
-      throw Error(where_of("name") + ": two " + what + " named '" + n + "'");
+    if (taken(n)) throw Error(where_of("name") + ": two " + what + " named '" + n + "' (a name heads its own columns)");
     return n;
   }
 
@@ -705,7 +716,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     });
     auto face = [&](Section& p, const std::string& kind, std::size_t count) {
       EssentialFace f;
-      f.name = p.unique_name(kind + std::to_string(count), "faces", s.fixed_faces, s.prescribed_faces);
+      f.name = p.unique_name(kind, count, "faces", s.fixed_faces, s.prescribed_faces);
       f.point = p.vec3("point", std::nullopt);
       f.normal = p.vec3("normal", std::nullopt, true);
       return f;
@@ -718,7 +729,8 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     });
     b.list("rigid_walls", [&](Section& p) {
       RigidWall w;
-      w.name = p.unique_name("wall" + std::to_string(s.rigid_walls.size()), "rigid walls", s.rigid_walls);
+      w.name = p.unique_name("wall", s.rigid_walls.size(), "rigid walls or faces", s.rigid_walls, s.fixed_faces,
+                             s.prescribed_faces);
       w.point = p.vec3("point", std::nullopt);
       w.normal = p.vec3("normal", std::nullopt, true);
       s.rigid_walls.push_back(w);
@@ -728,7 +740,8 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
   std::vector<SymmetryPlane> planes = s.symmetry_planes;
   top.list("dies", [&](Section& d) {
     Die die;
-    die.name = d.unique_name(std::nullopt, "dies", s.dies);
+    die.name = d.unique_name(std::nullopt, 0, "dies, rigid walls or faces", s.dies, s.rigid_walls, s.fixed_faces,
+                             s.prescribed_faces);
     std::filesystem::path p(d.text("cad", std::nullopt));
     die.cad = (p.is_absolute() ? p : (s.dir / p)).lexically_normal().string();
     d.record("cad", die.cad);
@@ -871,19 +884,15 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     Section o = top.section("output");
     s.output.checkpoint_steps = o.integer("checkpoint_steps", int(s.output.checkpoint_steps), 0, 1000000000);
     s.output.checkpoint_minutes = o.number("checkpoint_minutes", s.output.checkpoint_minutes, {0, 1e6});
-    auto numbered = [](const char* stem, std::size_t k) {  // (appended: "p" + to_string() trips GCC 12's -Wrestrict)
-      std::string n = stem;
-      return n += std::to_string(k);
-    };
     o.list("track", [&](Section& p) {
       Scene::Output::Track t;
-      t.name = p.unique_name(numbered("p", s.output.track.size()), "tracks", s.output.track);
+      t.name = p.unique_name("p", s.output.track.size(), "tracks", s.output.track);
       t.point = p.vec3("point", std::nullopt);
       s.output.track.push_back(t);
     });
     o.list("flow_lines", [&](Section& p) {
       Scene::Output::FlowLines f;
-      f.name = p.unique_name(numbered("flow_lines", s.output.flow_lines.size()), "flow lines", s.output.flow_lines);
+      f.name = p.unique_name("flow_lines", s.output.flow_lines.size(), "flow lines", s.output.flow_lines);
       f.point = p.vec3("point", std::nullopt);
       f.normal = p.vec3("normal", std::nullopt, true);
       f.direction = p.vec3("direction", std::nullopt, true);

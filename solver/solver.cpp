@@ -19,7 +19,7 @@
 #include "error.hpp"
 #include "health.hpp"
 #include "highest_frequency.hpp"
-#include "io/case_lock.hpp"
+#include "case_lock.hpp"
 #include "io/checkpoint.hpp"
 #include "io/history.hpp"
 #include "io/point_tracks.hpp"

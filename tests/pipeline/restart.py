@@ -104,8 +104,14 @@ while not ckpt.exists() and time.time() < deadline and job.poll() is None:  # we
 # a second rksolve into the case while this one runs is refused (two runs' history rows interleaved and
 # both exited 0), and leaves the running one alone: its restart below still ends bitwise equal
 second = tools.solve(interrupted, 2, sets=long, expect_ok=False)
-rkcase.check(second.returncode != 0 and "another rksolve is running in this case" in second.stderr and job.poll() is None,
+rkcase.check(second.returncode != 0 and "another rksolve or rkprep is writing this case" in second.stderr and job.poll() is None,
              f"a second run into the running case: exit {second.returncode}, {second.stderr.strip()[:200]}")
+# and so is an rkprep --force into it (it removed the running solve's results and lock under it)
+reprep = tools.run([tools.bin / "rkprep", rkcase.TAYLOR, "--ranks", 2, "--out", interrupted, "--force", "--quiet",
+                    "--set", "discretization.spacing=1.2e-3"], expect_ok=False)
+rkcase.check(reprep.returncode != 0 and "another rksolve or rkprep is writing this case" in reprep.stderr
+             and job.poll() is None and ckpt.exists(),
+             f"rkprep --force into the running case: exit {reprep.returncode}, {reprep.stderr.strip()[:200]}")
 job.send_signal(signal.SIGINT)
 _, err = job.communicate(timeout=60)
 said = [ln for ln in err.splitlines() if "rksolve: error" in ln]

@@ -98,8 +98,8 @@ TEST(Scene, AKeyGivenTwiceIsNamedOnItsSecondLine) {
 }
 
 // Names head history.csv's columns: a comma split them (33 header columns over 26-column rows), an empty
-// name gave '.force', two dies of one name two columns 'die.stroke'
-TEST(Scene, NamesAreColumnHeadsUniqueInTheirList) {
+// name gave '.force', two dies of one name two columns 'die.stroke', a die and a wall of one name two 'X.force'
+TEST(Scene, NamesAreColumnHeadsUniqueAmongDiesWallsAndFaces) {
   const std::string walls = std::string(kGood) + "boundaries:\n  rigid_walls:\n    - {name: floor, point: [0, 0, 0], normal: [0, 0, 1]}\n";
   const auto comma = error_of(replace(walls, "name: floor", "name: 'floor,left'"));
   EXPECT_NE(comma.find("key 'boundaries.rigid_walls[0].name' = 'floor,left': a name heads columns of history.csv"), std::string::npos)
@@ -107,13 +107,19 @@ TEST(Scene, NamesAreColumnHeadsUniqueInTheirList) {
   const auto empty = error_of(replace(walls, "name: floor", "name: ''"));
   EXPECT_NE(empty.find("= '': a name heads columns"), std::string::npos) << empty;
   const auto twice = error_of(walls + "    - {name: floor, point: [0, 0, 0.03], normal: [0, 0, -1]}\n");
-  EXPECT_NE(twice.find("two rigid walls named 'floor'"), std::string::npos) << twice;
+  EXPECT_NE(twice.find("two rigid walls or faces named 'floor'"), std::string::npos) << twice;
+  // an unnamed wall takes the first free number: after one named 'wall1' the second is 'wall2'
+  const std::string numbered = replace(walls, "name: floor", "name: wall1") + "    - {point: [0, 0, 0.03], normal: [0, 0, -1]}\n";
+  EXPECT_EQ(error_of(numbered), "");
+  EXPECT_EQ(rk::load_scene(write_scene(numbered)).rigid_walls.at(1).name, "wall2");
   EXPECT_EQ(error_of(replace(walls, "name: floor", "name: 'floor 2.a'")), "");  // (cases named so before still read)
   const std::string die = "  - {name: die, cad: die.geo, unit: mm, motion: {direction: [0, 0, -1], speed: 1}}\n";
   const std::string dies = std::string(kGood) + "dies:\n" + die;
   EXPECT_EQ(error_of(dies), "");
   const auto two = error_of(dies + die);
-  EXPECT_NE(two.find("key 'dies[1].name': two dies named 'die'"), std::string::npos) << two;
+  EXPECT_NE(two.find("key 'dies[1].name': two dies, rigid walls or faces named 'die'"), std::string::npos) << two;
+  const auto wall = error_of(replace(walls, "name: floor", "name: die") + "dies:\n" + die);
+  EXPECT_NE(wall.find("key 'dies[0].name': two dies, rigid walls or faces named 'die'"), std::string::npos) << wall;
 }
 
 // Constants in another unit run and give a wrong answer (E in GPa: the whole run in one step): warned by key

@@ -1,4 +1,4 @@
-#include "io/case_lock.hpp"
+#include "case_lock.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -21,8 +21,8 @@ CaseLock::CaseLock(const std::string& case_dir) : path_(case_dir + "/" + kSolveL
       ::close(fd_);
       fd_ = -1;
       if (why == EWOULDBLOCK)
-        throw Error(case_dir + ": another rksolve is running in this case (it holds " + path_ +
-                    "); wait for it to end or stop it, or solve a copy of the case");
+        throw Error(case_dir + ": another rksolve or rkprep is writing this case (it holds " + path_ +
+                    "); wait for it to end or stop it, or use a copy of the case");
       return;
     }
     // the file locked is the one at the path still (the run before may have removed it on its way out)
