@@ -21,6 +21,7 @@
 #include "highest_frequency.hpp"
 #include "case_lock.hpp"
 #include "io/checkpoint.hpp"
+#include "io/run_scene.hpp"
 #include "io/history.hpp"
 #include "io/point_tracks.hpp"
 #include "io/output.hpp"
@@ -573,7 +574,16 @@ void Simulation::rebind() {
 Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     : opt_(opt), comm_(comm), wall0_(comm.wtime()), baseline_mb_(process_memory_mb("VmRSS:")) {
   // baseline_mb_: the program and its libraries (MPI), before any data
-  scene_ = collectively(comm, [&] { return load_scene(opt.case_dir + "/scene.resolved.yaml", opt.overrides, Side::solve); });
+  std::vector<Override> recorded;  // a restart's: the run's own --set values (io/run_scene.hpp)
+  scene_ = collectively(comm, [&] {
+    return opt.restart ? restart_scene(opt.case_dir, opt.overrides, recorded)
+                       : load_scene(opt.case_dir + "/scene.resolved.yaml", opt.overrides, Side::solve);
+  });
+  if (!recorded.empty() && !opt.quiet && comm.rank() == 0) {
+    std::fprintf(stderr, "rksolve: restart with the run's own");
+    for (const Override& o : recorded) std::fprintf(stderr, " --set %s=%s", o.path.c_str(), o.value.c_str());
+    std::fprintf(stderr, "\n");
+  }
   std::string stage_checkpoint;  // a stage: the previous case's checkpoint, and what its dies carry over
   DieCarry carry;
   if (!opt.from.empty())
@@ -662,6 +672,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     }
   } else {
     collectively(comm, [&] { return remove_checkpoints(opt.case_dir, comm.rank()), 0; });
+    collectively(comm, [&] { return comm.rank() == 0 ? (write_run_scene(opt.case_dir, scene_, opt.overrides), 0) : 0; });
   }
   if (!opt.from.empty()) {  // a stage: the previous case's final state, this stage's own records
     collectively(comm, [&] { return read_checkpoint(stage_checkpoint, md_, st_, clock_, *dies_, &carry), 0; });

@@ -45,10 +45,24 @@ whole = copy("restart_whole")
 tools.solve(whole, 2, sets=["time.end=8e-6"] + out)
 split = copy("restart_split")
 tools.solve(split, 2, sets=["time.end=4e-6"] + out)
-tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", split, "--quiet", "--restart", "--set", "time.end=8e-6",
-               "--set", "time.output_interval=2e-6"])
+# the restart names only its new end: the run's own --set values (its 2-us frames) come from
+# checkpoint/run.yaml (a restart used to drop them and went on at the scene's frame interval)
+tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", split, "--quiet", "--restart", "--set", "time.end=8e-6"])
 reference = final(whole)
 rkcase.check(same(reference, final(split)), "stopped at 4 us and restarted to 8 us: bitwise equal, same frames")
+# a key that would change the run half-way is refused by name, by --set or by an edit of the case's scene
+changed = tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", split, "--quiet", "--restart", "--set", "time.end=12e-6",
+                     "--set", "material.yield_stress=100e6"], expect_ok=False)
+rkcase.check(changed.returncode != 0 and "--set: key 'material.yield_stress' = 100000000 where the run started with "
+             "400000000" in changed.stderr, f"a restart that changes the material: {changed.stderr.strip()[:300]}")
+resolved = split / "scene.resolved.yaml"
+text = resolved.read_text()
+resolved.write_text(text.replace("cfl: 0.9", "cfl: 0.5", 1))
+edited = tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", split, "--quiet", "--restart", "--set", "time.end=12e-6"],
+                   expect_ok=False)
+rkcase.check(edited.returncode != 0 and "scene.resolved.yaml: key 'time.cfl' = 0.5 where the run started with 0.9" in edited.stderr,
+             f"a restart after an edit of the case's scene: {edited.stderr.strip()[:300]}")
+resolved.write_text(text)
 
 # A new run in a case that holds an older, different run's checkpoints (CFL 0.5, to 8 us) must not
 # restart from them: run to 4 us, restart to 8 us, and get the whole run (the older 8-us checkpoint
