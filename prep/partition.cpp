@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "error.hpp"
+#include "hash.hpp"
 #include "local_particles.hpp"
 #include "neighbour_grid.hpp"
 
@@ -89,11 +90,15 @@ std::vector<Subdomain> build_subdomains(const SubdomainRequest& r) {
   const BoundaryFaces boundary = boundary_faces(r.mesh);
   std::vector<Subdomain> subs(r.ranks);
   std::vector<std::int32_t> local_index(n, -1);
+  // the partition's own mark, the same in every rank file of this prep (shared/subdomain.hpp)
+  const std::string partition = fnv1a_hex(
+      r.scene_hash + std::string(reinterpret_cast<const char*>(r.cell_rank.data()), r.cell_rank.size() * sizeof(std::int32_t)));
   for (int q = 0; q < r.ranks; ++q) {
     Subdomain& s = subs[q];
     s.rank = q;
     s.ranks = r.ranks;
     s.scene_hash = r.scene_hash;
+    s.partition_hash = partition;
     s.dies = r.dies;
     for (std::size_t k = 0; k < local[q].size(); ++k) {
       const auto I = local[q][k];

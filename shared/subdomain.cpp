@@ -42,6 +42,7 @@ void write_subdomain_file(const std::string& path, const Subdomain& s) {
   f.set_attr("rank", s.rank);
   f.set_attr("ranks", s.ranks);
   f.set_attr("scene_hash", s.scene_hash);
+  f.set_attr("partition_hash", s.partition_hash);
   f.set_attr("units", std::string("SI"));
   f.write("particles/global_id", s.global_id);
   f.write("particles/X", s.X, 3);
@@ -95,7 +96,7 @@ Subdomain read_subdomain(const std::string& path, int rank, int ranks, const std
     throw Error(subdomain_hash_path(path) + ": checksum file missing; re-run rkprep");
   }
   if (file_hash(path) != expected)
-    throw Error(path + ": checksum mismatch: the file is corrupt or truncated; re-run rkprep");
+    throw Error(path + ": checksum mismatch: the file is corrupt or truncated, or not the file its .fnv1a was written for; re-run rkprep");
   H5File f(path, H5File::Mode::read);
   Subdomain s;
   const auto version = f.attr_int("format_version");
@@ -105,6 +106,7 @@ Subdomain read_subdomain(const std::string& path, int rank, int ranks, const std
   s.rank = f.attr_int("rank");
   s.ranks = f.attr_int("ranks");
   s.scene_hash = f.attr_string("scene_hash");
+  if (f.has_attr("partition_hash")) s.partition_hash = f.attr_string("partition_hash");
   require(s.ranks == ranks, path,
           "prepared for " + std::to_string(s.ranks) + " ranks but the job has " + std::to_string(ranks) +
               "; re-run rkprep --ranks " + std::to_string(ranks) + " or mpirun -np " + std::to_string(s.ranks));

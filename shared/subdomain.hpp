@@ -1,6 +1,6 @@
 // The per-rank subdomain file (CASE/sub/rank_NNNN.h5): what one rank needs to run, written by rkprep,
 // read by rksolve. Layout (HDF5, every dataset Fletcher32-checksummed):
-//   attrs   format_version, rank, ranks, scene_hash, units="SI"
+//   attrs   format_version, rank, ranks, scene_hash, partition_hash, units="SI"
 //   particles/{global_id, X[n,3], volume, spacing, owner, flags}      local particles (owned + overlap)
 //   cells/{global_id, node_offsets[c+1], nodes}                      integration cells of this rank
 //   points/{X[m,3], weight, cell}                                    their integration points
@@ -51,6 +51,10 @@ struct DieSurface {
 struct Subdomain {
   std::int64_t rank = 0, ranks = 1;
   std::string scene_hash;
+  // the partition's (a hash of the scene's and the cells' ranks): every rank file of one rkprep run holds
+  // the same, so rksolve refuses files of two preps (another --partitioner) mixed in one case ("" in
+  // files written before it, which are not checked)
+  std::string partition_hash;
 
   // Local particles, sorted by global id.
   std::vector<std::int64_t> global_id;

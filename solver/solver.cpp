@@ -571,6 +571,22 @@ void Simulation::rebind() {
   if (frequency_) frequency_ = collectively(comm_, [&] { return std::make_unique<HighestFrequency>(md_, comm_); });
 }
 
+namespace {
+
+// Every rank's file from one rkprep run: the files of two preps of one scene (another --partitioner)
+// passed each file's checks and crashed the first overlap exchange (MPI_ERR_TRUNCATE, no message).
+void check_one_partition(const std::string& partition, const std::string& case_dir, const Comm& comm) {
+  const std::uint64_t h = partition.empty() ? 0 : std::stoull(partition, nullptr, 16);
+  const std::vector<double> all = comm.gather_all({double(h >> 32), double(h & 0xffffffffu)});  // (exact in doubles)
+  int other = -1;
+  for (int q = 1; q < comm.size() && other < 0; ++q)
+    if (all[2 * std::size_t(q)] != all[0] || all[2 * std::size_t(q) + 1] != all[1]) other = q;
+  comm.check(other < 0, subdomain_path(case_dir, std::max(other, 0)) + " was written by another rkprep run than " +
+                            subdomain_path(case_dir, 0) + " (another partition of the part); re-run rkprep for the case");
+}
+
+}  // namespace
+
 Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     : opt_(opt), comm_(comm), wall0_(comm.wtime()), baseline_mb_(process_memory_mb("VmRSS:")) {
   // baseline_mb_: the program and its libraries (MPI), before any data
@@ -594,10 +610,13 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     apply_stage(stage_, scene_);
     t0_ = stage_.start, dwell_ = stage_.dwell;
   }
+  std::string partition;
   md_ = collectively(comm, [&] {
-    return build_model(read_subdomain(subdomain_path(opt.case_dir, comm.rank()), comm.rank(), comm.size(), scene_.prep_hash),
-                       scene_);
+    const Subdomain sub = read_subdomain(subdomain_path(opt.case_dir, comm.rank()), comm.rank(), comm.size(), scene_.prep_hash);
+    partition = sub.partition_hash;
+    return build_model(sub, scene_);
   });
+  check_one_partition(partition, opt.case_dir, comm);
   comm.check(md_.dies.size() == scene_.dies.size(), "the subdomain files hold " + std::to_string(md_.dies.size()) +
                                                         " dies but the scene declares " +
                                                         std::to_string(scene_.dies.size()) + "; re-run rkprep");

@@ -1,4 +1,4 @@
-"""A missing, foreign (other scene) or wrong-rank-count subdomain file stops ALL ranks with one clear
+"""A missing, foreign (other scene or other prep) or wrong-rank-count subdomain file stops ALL ranks with one clear
 message and a non-zero exit, within seconds (no hang)."""
 import shutil
 import time
@@ -40,3 +40,14 @@ case = tools.case("bad_version")
 tools.prep(case, 1, sets=coarse)
 (case / "sub" / "rank_0000.h5").write_bytes(b"not hdf5 at all")
 expect_failure(case, 1, "checksum mismatch: the file is corrupt or truncated", "garbage subdomain file")
+
+# rank files of two preps of the same scene (another partitioner): each passes its own checks, and the
+# first overlap exchange crashed with MPI_ERR_TRUNCATE and no rksolve message
+case = tools.case("bad_mixed")
+other = tools.case("bad_other_partition")
+tools.prep(case, 2, sets=coarse)
+tools.run([tools.bin / "rkprep", rkcase.TAYLOR, "--ranks", 2, "--out", other, "--quiet", "--partitioner", "metis-recursive",
+           "--set", coarse[0]])
+for name in ("rank_0001.h5", "rank_0001.h5.fnv1a"):
+    shutil.copy(other / "sub" / name, case / "sub" / name)
+expect_failure(case, 2, "sub/rank_0001.h5 was written by another rkprep run than", "rank files of two preps")
