@@ -39,7 +39,10 @@ int write_chain_pvd(const std::string& case_dir, const std::vector<PvdEntry>& ow
     if (earlier.size() > 10000) throw Error(case_dir + "/stage.json: the chain of stages loops");
     earlier.push_back({link.from, link.start});
   }
-  if (earlier.empty()) return 0;
+  if (earlier.empty()) {  // no stage (any more: solved again without --from): an old chain would pass for its own
+    fs::remove(case_dir + "/vtk/chain.pvd");
+    return 0;
+  }
   const fs::path vtk = fs::absolute(case_dir + "/vtk");
   std::map<std::string, int> parts = {{"part", 0}};  // a block's number by its name, over the chain
   std::vector<PvdEntry> chain;

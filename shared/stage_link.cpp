@@ -13,7 +13,10 @@ namespace rk {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StageLink, from, start, die_start, continues, dwell)
 
 void write_stage_link(const std::string& case_dir, const StageLink& link) {
-  write_text_file(case_dir + "/" + kStageLinkFile, nlohmann::json(link).dump(2) + "\n");
+  nlohmann::json j = link;
+  // and where it lies from this case: a chain moved or copied as a whole finds its own stages
+  j["from_relative"] = std::filesystem::relative(link.from, std::filesystem::absolute(case_dir)).string();
+  write_text_file(case_dir + "/" + kStageLinkFile, j.dump(2) + "\n");
 }
 
 bool read_stage_link(const std::string& case_dir, StageLink& link) {
@@ -24,6 +27,12 @@ bool read_stage_link(const std::string& case_dir, StageLink& link) {
   if (j.is_discarded() || !j.is_object()) throw Error(path + ": not a JSON object (a damaged file?)");
   try {
     link = j.get<StageLink>();
+    // the previous stage beside this one, where the chain was moved or copied whole (the recorded
+    // absolute path is then gone, or the original chain's)
+    if (j.contains("from_relative")) {
+      const auto beside = (std::filesystem::absolute(case_dir) / j.at("from_relative").get<std::string>()).lexically_normal();
+      if (std::filesystem::is_directory(beside)) link.from = beside.string();
+    }
   } catch (const nlohmann::json::exception& e) {
     throw Error(path + ": " + e.what());
   }

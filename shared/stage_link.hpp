@@ -8,7 +8,8 @@
 namespace rk {
 
 struct StageLink {
-  std::string from;                 // the previous stage's case folder (absolute)
+  std::string from;                 // the previous stage's case folder (absolute; read: the one beside
+                                    // this case where the chain was moved or copied whole)
   double start = 0;                 // s: the previous stage's end, this one's start on the chain's clock
   std::vector<double> die_start;    // per die of this stage's scene: when its motion began (s)
   std::vector<int> continues;       // per die: the previous stage's die it continues, or -1 (new)

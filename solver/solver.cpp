@@ -6,6 +6,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -691,7 +692,13 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     }
   } else {
     collectively(comm, [&] { return remove_checkpoints(opt.case_dir, comm.rank()), 0; });
-    collectively(comm, [&] { return comm.rank() == 0 ? (write_run_scene(opt.case_dir, scene_, opt.overrides), 0) : 0; });
+    collectively(comm, [&] {
+      if (comm.rank() != 0) return 0;
+      write_run_scene(opt.case_dir, scene_, opt.overrides);
+      // a run without --from is no stage: an earlier run's link would chain it to another case's frames
+      if (opt.from.empty()) std::filesystem::remove(opt.case_dir + "/" + kStageLinkFile);
+      return 0;
+    });
   }
   if (!opt.from.empty()) {  // a stage: the previous case's final state, this stage's own records
     collectively(comm, [&] { return read_checkpoint(stage_checkpoint, md_, st_, clock_, *dies_, &carry), 0; });

@@ -14,6 +14,7 @@
   continuing die with another motion, --from with --restart."""
 import csv
 import json
+import shutil
 import math
 
 import h5py
@@ -93,6 +94,22 @@ times = [t for t, _ in parts]
 rkcase.check(times == sorted(set(times)) and len(times) == 5 and parts[0][1].startswith("../../first/vtk/")
              and parts[2] == (0.2e-3, "frame_00000.vtu") and all((second / "vtk" / f).exists() for _, f in parts),
              f"vtk/chain.pvd: the first stage's frames, then the second's: {parts}")
+
+# a chain copied whole finds its own earlier stage (stage.json's path relative to the case; the absolute
+# one named the original chain, or nothing once it was moved)
+moved = tools.case("moved")
+for c in (first, second):
+    shutil.copytree(c, moved / c.name)
+tools.post(moved / "first")
+tools.post(moved / "second")
+copied = __import__("re").findall(r'name="part" file="([^"]+)"', (moved / "second" / "vtk" / "chain.pvd").read_text())
+rkcase.check(copied[0].startswith("../../first/vtk/") and all((moved / "second" / "vtk" / f).exists() for f in copied),
+             f"a chain copied whole: its chain.pvd takes the copy's first stage: {copied[:2]}")
+# and a stage solved again without --from is a stage no more (its old stage.json chained it to the first's frames)
+tools.solve(moved / "second", 2, sets=["time.end=0.05e-3"] + TIMES)
+tools.post(moved / "second")
+rkcase.check(not (moved / "second" / "stage.json").exists() and not (moved / "second" / "vtk" / "chain.pvd").exists(),
+             "a stage solved again without --from: no stage.json, no chain.pvd")
 
 # 3. a new die starts at its CAD position when its stage starts
 renamed = scene_file("renamed.yaml", friction.replace("name: die", "name: die2"))
