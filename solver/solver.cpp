@@ -703,6 +703,7 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
   if (!opt.from.empty()) {  // a stage: the previous case's final state, this stage's own records
     collectively(comm, [&] { return read_checkpoint(stage_checkpoint, md_, st_, clock_, *dies_, &carry), 0; });
     clock_.next_history = st_.t;  // a row at the stage's start
+    clock_.next_output = st_.t;   // and a frame (the previous stage's grid left it without one where it ended off it)
     clock_.max_error = clock_.max_ke_ratio = clock_.max_ke_ratio_late = clock_.max_pressure_ratio = 0;
     clock_.frames = 0;
     // The kinetic energy the stage changes is work done on the part, so the balance goes on: another

@@ -138,7 +138,8 @@ tools.prep(rest, 2, scene=dwell, sets=[SPACING])
 # (no thermal expansion in these stages: a dwell's cooling contracts the part only when the next stage's
 # mechanics resumes, all at once; a thermal shock that a 2 ms forging's energies could not carry)
 COLD = ["material.thermal_expansion=0"]
-tools.solve(forged, 2, sets=["time.end=0.002", "time.output_interval=0.001"] + COLD)
+# (its frames at 0, 1.5 and 2 ms: its end off its frames' grid, whose next time is 3 ms)
+tools.solve(forged, 2, sets=["time.end=0.002", "time.output_interval=0.0015"] + COLD)
 tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", rest, "--quiet", "--from", forged, "--set", COLD[0]])
 before, after = json.loads((forged / "solve.json").read_text()), json.loads((rest / "solve.json").read_text())
 steps = after["steps"] - before["steps"]
@@ -148,6 +149,13 @@ rkcase.check(json.loads((rest / "stage.json").read_text())["dwell"] and steps <=
              and abs(after["thermal_updates"] - before["thermal_updates"] - steps) <= 1,
              f"the dwell: {steps} thermal steps of {after['thermal_step_s']:.3g} s for 5 s "
              f"({5.0 / 3e-5:.0f} mechanical steps of 3e-5 s)")
+# its first frame is the hand-over at 2 ms (it waited for the forging's next frame time, 3 ms: the state
+# the dwell starts from was in no frame of the chain)
+first_frames = sorted((rest / "results" / "rank_0000").glob("frame_*.h5"))
+with h5py.File(first_frames[0], "r") as f:
+    times = []
+    f.visititems(lambda name, obj: times.append(float(obj[()].ravel()[0])) if name.endswith("/time") else None)
+rkcase.check(times == [0.002], f"the dwell's first frame at its start, 2 ms: {times}")
 rows = history(rest)
 T0, T1 = float(rows[0]["temperature_mean"]), float(rows[-1]["temperature_mean"])
 # Lumped cooling of the eighth billet (r = h = 10 mm: A / V = 300 /m), c = 650 J/(kg K) above 900 C,
