@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
 
 #include "error.hpp"
 #include "h5file.hpp"
@@ -70,6 +73,16 @@ StageLink begin_stage(const std::string& from_arg, const std::string& case_dir, 
   });
   StageLink previous;  // the previous case's own link, when it is a stage itself: its dies' starts
   collectively(comm, [&] {
+    // a stage runs on its previous stage's ranks (its particles where they were): the previous rank files'
+    // own message would have the user prepare the previous stage again
+    std::ifstream prep(from + "/prep.json");
+    const auto j = nlohmann::json::parse(prep, nullptr, false);
+    if (j.is_object() && j.contains("ranks") && j["ranks"].is_number_integer() && j["ranks"].get<int>() != comm.size()) {
+      const std::string n = std::to_string(j["ranks"].get<int>());
+      throw Error("--from " + from + ": the previous stage was prepared for " + n + " ranks and this job has " +
+                  std::to_string(comm.size()) + "; a stage runs on its previous stage's ranks: prepare " + case_dir +
+                  " with rkprep --ranks " + n + " and run it with mpirun -np " + n);
+    }
     if (!read_stage_link(from, previous)) previous.die_start.assign(before.dies.size(), 0.0);
     if (previous.die_start.size() != before.dies.size()) throw Error(from + "/stage.json: its dies are not its scene's");
     check_boundaries(scene, before, from);

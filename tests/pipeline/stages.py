@@ -211,5 +211,12 @@ faster = tools.case("faster")
 tools.prep(faster, 2, scene=scene_file("faster.yaml", friction.replace("[5.1e-3, 5.0e-3]", "[5.1e-3, 6.0e-3]")), sets=[SPACING])
 refused(faster, ["--from", first], "die 'die' is the previous stage's die by its name but its cad, unit or motion differ",
         "a continuing die with another motion")
+# a stage prepared for another rank count than its previous stage: named as this stage's to prepare again
+# (the previous stage's rank file said to prepare that one again, which would remove its results)
+one_rank = tools.case("one_rank")
+tools.prep(one_rank, 1, scene=scene, sets=[SPACING])
+p = tools.run(["mpirun", "-np", 1, tools.bin / "rksolve", one_rank, "--quiet", "--from", first], expect_ok=False)
+rkcase.check(p.returncode != 0 and "the previous stage was prepared for 2 ranks and this job has 1" in p.stderr
+             and f"prepare {one_rank} with rkprep --ranks 2" in p.stderr, f"a stage on another rank count: {p.stderr.strip()}")
 p = tools.run([tools.bin / "rksolve", second, "--from", first, "--restart"], expect_ok=False)
 rkcase.check(p.returncode != 0 and "--restart excludes --from" in p.stderr, f"--from with --restart: {p.stderr.strip()}")
