@@ -1,5 +1,6 @@
 #include "chain.hpp"
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -38,6 +39,11 @@ int write_chain_pvd(const std::string& case_dir, const std::vector<PvdEntry>& ow
   for (std::string dir = case_dir; read_stage_link(dir, link); dir = link.from) {
     if (earlier.size() > 10000) throw Error(case_dir + "/stage.json: the chain of stages loops");
     earlier.push_back({link.from, link.start});
+    if (!link.from_solve.empty() && solve_record_hash(link.from) != link.from_solve)
+      std::fprintf(stderr,
+                   "rkpost: warning: %s was solved or prepared again after %s started from it: the chain's frames "
+                   "before %g s are not the run this stage went on from (solve the stages after it again)\n",
+                   link.from.c_str(), dir.c_str(), link.start);
   }
   if (earlier.empty()) {  // no stage (any more: solved again without --from): an old chain would pass for its own
     fs::remove(case_dir + "/vtk/chain.pvd");

@@ -4,8 +4,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "error.hpp"
+#include "hash.hpp"
 #include "text_file.hpp"
 
 namespace rk {
@@ -16,7 +18,15 @@ void write_stage_link(const std::string& case_dir, const StageLink& link) {
   nlohmann::json j = link;
   // and where it lies from this case: a chain moved or copied as a whole finds its own stages
   j["from_relative"] = std::filesystem::relative(link.from, std::filesystem::absolute(case_dir)).string();
+  j["from_solve"] = link.from_solve;
   write_text_file(case_dir + "/" + kStageLinkFile, j.dump(2) + "\n");
+}
+
+std::string solve_record_hash(const std::string& case_dir) {
+  std::ifstream in(case_dir + "/solve.json", std::ios::binary);
+  if (!in) return "";
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return fnv1a_hex(text);
 }
 
 bool read_stage_link(const std::string& case_dir, StageLink& link) {
@@ -29,6 +39,7 @@ bool read_stage_link(const std::string& case_dir, StageLink& link) {
     link = j.get<StageLink>();
     // the previous stage beside this one, where the chain was moved or copied whole (the recorded
     // absolute path is then gone, or the original chain's)
+    if (j.contains("from_solve")) link.from_solve = j.at("from_solve").get<std::string>();
     if (j.contains("from_relative")) {
       const auto beside = (std::filesystem::absolute(case_dir) / j.at("from_relative").get<std::string>()).lexically_normal();
       if (std::filesystem::is_directory(beside)) link.from = beside.string();

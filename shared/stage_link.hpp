@@ -14,7 +14,13 @@ struct StageLink {
   std::vector<double> die_start;    // per die of this stage's scene: when its motion began (s)
   std::vector<int> continues;       // per die: the previous stage's die it continues, or -1 (new)
   bool dwell = false;               // no dies, loads or moving faces: only the temperature advanced
+  // the previous stage's solve.json as this stage started from it (a hash): a previous stage solved or
+  // prepared again since then no longer holds the state this one started from ("" in older links)
+  std::string from_solve;
 };
+
+// The hash of CASE/solve.json ("" when it cannot be read), as StageLink::from_solve records it.
+std::string solve_record_hash(const std::string& case_dir);
 
 inline const char* kStageLinkFile = "stage.json";
 

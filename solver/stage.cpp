@@ -63,6 +63,7 @@ StageLink begin_stage(const std::string& from_arg, const std::string& case_dir, 
   const std::string from = std::filesystem::absolute(from_arg).lexically_normal().string();
   StageLink link;
   link.from = from;
+  link.from_solve = solve_record_hash(from);
   if (!std::filesystem::is_directory(from)) throw Error("--from " + from + ": no such case folder");
   if (std::filesystem::equivalent(from, case_dir))
     throw Error("--from " + from + ": a stage starts from another case (to go on in this one, use --restart)");

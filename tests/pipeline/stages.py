@@ -101,10 +101,16 @@ moved = tools.case("moved")
 for c in (first, second):
     shutil.copytree(c, moved / c.name)
 tools.post(moved / "first")
-tools.post(moved / "second")
+p = tools.post(moved / "second")
+rkcase.check("solved or prepared again" not in p.stderr, f"a chain copied whole is no stale chain: {p.stderr.strip()}")
 copied = __import__("re").findall(r'name="part" file="([^"]+)"', (moved / "second" / "vtk" / "chain.pvd").read_text())
 rkcase.check(copied[0].startswith("../../first/vtk/") and all((moved / "second" / "vtk" / f).exists() for f in copied),
              f"a chain copied whole: its chain.pvd takes the copy's first stage: {copied[:2]}")
+# the first stage solved again after the second started from it: the chain mixes two runs, and rkpost says so
+tools.solve(moved / "first", 2, sets=["time.end=0.05e-3"] + TIMES)
+tools.post(moved / "first")
+p = tools.post(moved / "second")
+rkcase.check("first was solved or prepared again after" in p.stderr, f"a chain whose first stage was solved again: {p.stderr.strip()}")
 # and a stage solved again without --from is a stage no more (its old stage.json chained it to the first's frames)
 tools.solve(moved / "second", 2, sets=["time.end=0.05e-3"] + TIMES)
 tools.post(moved / "second")
