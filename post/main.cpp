@@ -14,13 +14,15 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "case_layout.hpp"
+#include "case_lock.hpp"
+#include "chain.hpp"
 #include "cli.hpp"
 #include "die_fill_regions.hpp"
 #include "flow_lines.hpp"
 #include "folds.hpp"
 #include "h5file.hpp"
 #include "pictures.hpp"
-#include "chain.hpp"
 #include "pvtu_writer.hpp"
 #include "report.hpp"
 #include "result_frame.hpp"
@@ -582,7 +584,10 @@ int run(int argc, char** argv) {
   std::vector<std::string> fold_lines;
   for (const rk::Fold& f : folds) fold_lines.push_back(rk::describe_fold(f));
   rk::write_report(case_dir, fill, folding ? &fold_lines : nullptr);
-  if (!fs::exists(case_dir + "/solve.json"))  // a run a health check stopped: its frames are there to look at
+  if (!fs::exists(case_dir + "/solve.json") && rk::case_locked(case_dir))  // a run still going: its frames so far
+    std::fprintf(stderr, "rkpost: warning: %s: rksolve is still running in it (it holds %s/%s): these are its frames so far\n",
+                 case_dir.c_str(), case_dir.c_str(), rk::kSolveLock);
+  else if (!fs::exists(case_dir + "/solve.json"))  // a run a health check stopped: its frames are there to look at
     std::fprintf(stderr, "rkpost: warning: %s has no solve.json: the run did not finish (report.md says so)\n",
                  case_dir.c_str());
   if (!quiet)

@@ -34,6 +34,14 @@ CaseLock::CaseLock(const std::string& case_dir) : path_(case_dir + "/" + kSolveL
   }
 }
 
+bool case_locked(const std::string& case_dir) {
+  const int fd = ::open((case_dir + "/" + kSolveLock).c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool held = ::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+  ::close(fd);  // (drops a shared lock this took)
+  return held;
+}
+
 CaseLock::~CaseLock() {
   if (fd_ < 0) return;
   ::unlink(path_.c_str());  // (while still held: a run that opens it now finds it gone and makes its own)

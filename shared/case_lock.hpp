@@ -22,4 +22,7 @@ class CaseLock {
   int fd_ = -1;
 };
 
+// Whether a program holds the case's lock now (rkpost: a run in progress has no solve.json yet).
+bool case_locked(const std::string& case_dir);
+
 }  // namespace rk

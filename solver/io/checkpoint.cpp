@@ -169,9 +169,10 @@ std::string restart_checkpoint(const std::string& case_dir, const Comm& comm) {
   const std::string newest = checkpoint_path(case_dir, comm.rank()), previous = newest + ".previous";
   const std::int64_t mine[2] = {checkpoint_step(newest), checkpoint_step(previous)};
   double step = double(std::max(mine[0], mine[1]));
+  // (the lowest rank without any names its file)
+  comm.check(step >= 0, case_dir + "/checkpoint: no complete checkpoint of every rank to restart from: " + newest +
+                            " and its .previous are missing or unreadable (run without --restart)");
   comm.min(&step, 1);
-  comm.check(step >= 0, case_dir + "/checkpoint: no complete checkpoint of every rank to restart from "
-                                   "(run without --restart)");
   const bool held = mine[0] == std::int64_t(step) || mine[1] == std::int64_t(step);
   comm.check(held, newest + ": this rank holds no checkpoint of step " + std::to_string(std::int64_t(step)) +
                        ", the newest every other rank holds (run without --restart)");

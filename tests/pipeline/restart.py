@@ -126,6 +126,10 @@ reprep = tools.run([tools.bin / "rkprep", rkcase.TAYLOR, "--ranks", 2, "--out", 
 rkcase.check(reprep.returncode != 0 and "another rksolve or rkprep is writing this case" in reprep.stderr
              and job.poll() is None and ckpt.exists(),
              f"rkprep --force into the running case: exit {reprep.returncode}, {reprep.stderr.strip()[:200]}")
+# rkpost meanwhile merges the frames so far and says the run is still going (it said the run did not finish)
+during = tools.post(interrupted)
+rkcase.check("rksolve is still running in it" in during.stderr and job.poll() is None,
+             f"rkpost during the run: {during.stderr.strip()[:200]}")
 job.send_signal(signal.SIGINT)
 _, err = job.communicate(timeout=60)
 said = [ln for ln in err.splitlines() if "rksolve: error" in ln]
@@ -156,7 +160,8 @@ rkcase.check(same(final(whole), final(behind)),
              f"rank 1 a checkpoint behind (steps {steps}): restarted from the older step, bitwise equal")
 empty = copy("restart_nothing")
 p = tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", empty, "--quiet", "--restart"], expect_ok=False, timeout=120)
-rkcase.check(p.returncode != 0 and "no complete checkpoint" in p.stderr and "Traceback" not in p.stderr,
+rkcase.check(p.returncode != 0 and "no complete checkpoint" in p.stderr and "Traceback" not in p.stderr
+             and "checkpoint/rank_0000.h5 and its .previous are missing or unreadable" in p.stderr,
              f"--restart without a checkpoint: {p.stderr.strip().splitlines()[0] if p.stderr.strip() else p.returncode}")
 
 # Wall-clock checkpoints: with step checkpoints off, a checkpoint still appears while the run goes on.
