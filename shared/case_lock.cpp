@@ -16,8 +16,15 @@ CaseLock::CaseLock(const std::string& case_dir) : path_(case_dir + "/" + kSolveL
   for (;;) {
     fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd_ < 0) return;
-    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-      const int why = errno;
+    // (a few tries over 0.1 s: rkpost's case_locked holds a shared lock for an instant)
+    int got = -1, why = 0;
+    for (int tries = 0; tries < 5; ++tries) {
+      got = ::flock(fd_, LOCK_EX | LOCK_NB);
+      why = errno;
+      if (got == 0 || why != EWOULDBLOCK) break;
+      ::usleep(20000);
+    }
+    if (got != 0) {
       ::close(fd_);
       fd_ = -1;
       if (why == EWOULDBLOCK)

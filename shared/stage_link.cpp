@@ -17,7 +17,9 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StageLink, from, start, die_start, continues,
 void write_stage_link(const std::string& case_dir, const StageLink& link) {
   nlohmann::json j = link;
   // and where it lies from this case: a chain moved or copied as a whole finds its own stages
-  j["from_relative"] = std::filesystem::relative(link.from, std::filesystem::absolute(case_dir)).string();
+  // (lexically, as it is read back: fs::relative would resolve a symlinked case folder first)
+  j["from_relative"] =
+      std::filesystem::path(link.from).lexically_relative(std::filesystem::absolute(case_dir).lexically_normal()).string();
   j["from_solve"] = link.from_solve;
   write_text_file(case_dir + "/" + kStageLinkFile, j.dump(2) + "\n");
 }

@@ -690,6 +690,10 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
       std::snprintf(times, sizeof times, "key 'time.end' = %g s is before the checkpoint's t = %g s", scene_.time.end, st_.t);
       throw Error(times + (" (" + path + "): a restart goes on to a later time.end"));
     }
+    // the next restart goes on with this one's end, intervals and bounds (only those may differ)
+    collectively(comm, [&] {
+      return comm.rank() == 0 ? (write_run_scene(opt.case_dir, scene_, merged_sets(recorded, opt.overrides)), 0) : 0;
+    });
   } else {
     collectively(comm, [&] { return remove_checkpoints(opt.case_dir, comm.rank()), 0; });
     collectively(comm, [&] {

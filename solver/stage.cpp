@@ -80,9 +80,12 @@ StageLink begin_stage(const std::string& from_arg, const std::string& case_dir, 
     const auto j = nlohmann::json::parse(prep, nullptr, false);
     if (j.is_object() && j.contains("ranks") && j["ranks"].is_number_integer() && j["ranks"].get<int>() != comm.size()) {
       const std::string n = std::to_string(j["ranks"].get<int>());
+      std::ifstream own(case_dir + "/prep.json");  // this stage prepared for them already: only the job's count is off
+      const auto mine = nlohmann::json::parse(own, nullptr, false);
+      const bool ready = mine.is_object() && mine.contains("ranks") && mine["ranks"] == j["ranks"];
       throw Error("--from " + from + ": the previous stage was prepared for " + n + " ranks and this job has " +
-                  std::to_string(comm.size()) + "; a stage runs on its previous stage's ranks: prepare " + case_dir +
-                  " with rkprep --ranks " + n + " and run it with mpirun -np " + n);
+                  std::to_string(comm.size()) + "; a stage runs on its previous stage's ranks: " +
+                  (ready ? "" : "prepare " + case_dir + " with rkprep --ranks " + n + " and ") + "run it with mpirun -np " + n);
     }
     if (!read_stage_link(from, previous)) previous.die_start.assign(before.dies.size(), 0.0);
     if (previous.die_start.size() != before.dies.size()) throw Error(from + "/stage.json: its dies are not its scene's");

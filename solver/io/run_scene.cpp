@@ -59,6 +59,17 @@ bool restart_may_change(const std::string& key) {
          key == "output.checkpoint_minutes" || key.rfind("health.", 0) == 0;
 }
 
+std::vector<Override> merged_sets(const std::vector<Override>& earlier, const std::vector<Override>& later) {
+  std::vector<Override> all;
+  for (const auto* list : {&earlier, &later})
+    for (const Override& o : *list) {
+      const auto at = std::find_if(all.begin(), all.end(), [&](const Override& a) { return a.path == o.path; });
+      if (at == all.end()) all.push_back(o);
+      else at->value = o.value;
+    }
+  return all;
+}
+
 void write_run_scene(const std::string& case_dir, const Scene& scene, const std::vector<Override>& overrides) {
   std::filesystem::create_directories(case_dir + "/checkpoint");
   YAML::Emitter e;
@@ -91,9 +102,7 @@ Scene restart_scene(const std::string& case_dir, const std::vector<Override>& ov
   if (!edited.empty())
     throw Error(file + ": " + edited + " (" + path + "): a restart goes on with its run's scene; undo the edit, or "
                 "run without --restart to start anew");
-  std::vector<Override> all = recorded;
-  all.insert(all.end(), overrides.begin(), overrides.end());
-  Scene scene = load_scene(file, all, Side::solve);
+  Scene scene = load_scene(file, merged_sets(recorded, overrides), Side::solve);
   const std::string set = changed(started, keys_of(YAML::Load(scene.resolved_yaml)));
   if (!set.empty())
     throw Error("--set: " + set + ": a restart goes on with its run's scene and may change only time.end, "

@@ -11,8 +11,13 @@
 
 namespace rk {
 
-// A fresh run's record (rank 0; the checkpoint folder made if needed).
+// The run's record (rank 0; the checkpoint folder made if needed): a fresh run's, and a restart's with
+// its own --set values after the run's (merged_sets), so that the next restart goes on with its end,
+// intervals and bounds.
 void write_run_scene(const std::string& case_dir, const Scene& scene, const std::vector<Override>& overrides);
+
+// `earlier` then `later`, each path once, with its last value (in the order first given).
+std::vector<Override> merged_sets(const std::vector<Override>& earlier, const std::vector<Override>& later);
 
 // The scene a restart goes on with: scene.resolved.yaml with the run's recorded --set values, then the
 // restart's own. The restart's may change only the keys that do not change the answer so far

@@ -63,6 +63,10 @@ edited = tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", split, "--quiet",
 rkcase.check(edited.returncode != 0 and "scene.resolved.yaml: key 'time.cfl' = 0.5 where the run started with 0.9" in edited.stderr,
              f"a restart after an edit of the case's scene: {edited.stderr.strip()[:300]}")
 resolved.write_text(text)
+# and a plain restart goes on to the last restart's end (8 us): run.yaml keeps a restart's own --set values too
+# (it kept the first run's 4 us, below the checkpoint's 8 us, and the plain restart was refused)
+again = tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", split, "--quiet", "--restart"], expect_ok=False)
+rkcase.check(again.returncode == 0, f"a plain restart after a restart to 8 us: {again.stderr.strip()[:300]}")
 
 # A new run in a case that holds an older, different run's checkpoints (CFL 0.5, to 8 us) must not
 # restart from them: run to 4 us, restart to 8 us, and get the whole run (the older 8-us checkpoint

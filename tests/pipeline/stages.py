@@ -116,6 +116,13 @@ tools.solve(moved / "second", 2, sets=["time.end=0.05e-3"] + TIMES)
 tools.post(moved / "second")
 rkcase.check(not (moved / "second" / "stage.json").exists() and not (moved / "second" / "vtk" / "chain.pvd").exists(),
              "a stage solved again without --from: no stage.json, no chain.pvd")
+# a stage run through a symlink to its folder records the previous stage's path from the link, as it is read
+via = tools.work / "via_link"
+via.unlink(missing_ok=True)
+via.symlink_to(moved / "second")
+tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", via, "--quiet", "--from", moved / "first", "--set", "time.end=0.05e-3"])
+relative = json.loads((via / "stage.json").read_text())["from_relative"]
+rkcase.check(relative == "../moved/first", f"a stage run through a symlink: from_relative {relative} (../moved/first)")
 
 # 3. a new die starts at its CAD position when its stage starts
 renamed = scene_file("renamed.yaml", friction.replace("name: die", "name: die2"))
