@@ -127,4 +127,34 @@ void check_workpiece_outside(const DieSurface& surface, const Die& die, const Vo
   }
 }
 
+void check_die_off_symmetry_planes(const DieSurface& surface, const Die& die, const std::vector<SymmetryPlane>& planes,
+                                   const VolumeMesh& workpiece, double spacing) {
+  if (planes.empty()) return;
+  const DieSearch search(surface, spacing);
+  const double near = 0.05 * spacing;  // (the die facets' chord error, as check_workpiece_outside)
+  for (std::size_t k = 0; k < planes.size(); ++k) {
+    const SymmetryPlane& pl = planes[k];
+    std::size_t resting = 0;
+    for (std::size_t i = 0; i < workpiece.node_count(); ++i) {
+      const double* x = &workpiece.X[3 * i];
+      const double height = (x[0] - pl.point[0]) * pl.normal[0] + (x[1] - pl.point[1]) * pl.normal[1] +
+                            (x[2] - pl.point[2]) * pl.normal[2];
+      if (std::abs(height) > near) continue;  // a particle in the plane,
+      const DieHit hit = search.nearest(x);
+      if (!hit.found || std::abs(hit.gap) > near) continue;  // on the die,
+      const double along = std::abs(hit.normal[0] * pl.normal[0] + hit.normal[1] * pl.normal[1] + hit.normal[2] * pl.normal[2]);
+      if (along > 0.99) ++resting;  // on a face that lies in the plane (not on an edge of a cut)
+    }
+    if (resting > 0) {
+      std::ostringstream s;
+      s << "die '" << die.name << "' (" << die.cad << "): " << resting << " particles rest on a face of it that lies in "
+        << "symmetry plane " << k << " (point (" << pl.point[0] << ", " << pl.point[1] << ", " << pl.point[2]
+        << "), normal (" << pl.normal[0] << ", " << pl.normal[1] << ", " << pl.normal[2] << ")): the plane holds the "
+        << "part there already, so the die would carry none of the load; remove the plane (the die holds the part) "
+           "or the die";
+      throw Error(s.str());
+    }
+  }
+}
+
 }  // namespace rk

@@ -153,6 +153,7 @@ int run(int argc, char** argv) {
     for (const auto& die : scene.dies) {
       out.push_back(rk::mesh_die(die, scene.discretization.spacing));
       rk::check_workpiece_outside(out.back(), die, mesh, scene.discretization.spacing);
+      rk::check_die_off_symmetry_planes(out.back(), die, scene.symmetry_planes, mesh, scene.discretization.spacing);
     }
     return out;
   });

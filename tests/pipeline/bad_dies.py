@@ -1,5 +1,6 @@
 """Bad CAD input is one clear error naming the die or the file, with a non-zero exit: a missing die
-CAD file, a die that is not a closed solid, a workpiece that starts inside a die, a missing workpiece
+CAD file, a die that is not a closed solid, a workpiece that starts inside a die, a die face in a
+symmetry plane that the part rests on, a missing workpiece
 CAD, an unreadable one, and a workpiece given in the wrong unit (millimetres read as metres, refused
 before meshing)."""
 import csv
@@ -32,6 +33,13 @@ expect(scene_with_die("sunk", 'SetFactory("OpenCASCADE");\nBox(1) = {-2, -2, 9, 
        "the workpiece starts inside the die", "workpiece inside the die")
 expect(scene_with_die("open", 'SetFactory("OpenCASCADE");\nRectangle(1) = {-2, -2, 10, 20, 20};\n'),
        "no closed solid", "die that is only a surface")
+# a symmetry plane laid on the die's face (z = 10 mm, where the die meets the billet's top): the plane would
+# hold the billet there and the die read no force
+on_die = w / "plane_on_die.yaml"
+on_die.write_text(scene_with_die("flat", (src / "die.geo").read_text()).read_text().replace(
+    "    - {point: [0, 0, 0], normal: [0, 0, 1]}\n",
+    "    - {point: [0, 0, 0], normal: [0, 0, 1]}\n    - {point: [0, 0, 0.01], normal: [0, 0, -1]}\n"))
+expect(on_die, "particles rest on a face of it that lies in symmetry plane 3", "a symmetry plane on the die's face")
 
 scene = rkcase.TAYLOR
 (w / "junk.step").write_text("this is not a STEP file\n")
