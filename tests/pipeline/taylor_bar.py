@@ -131,13 +131,14 @@ text = "\n".join(ln for ln in report.splitlines() if not ln.startswith("| scene 
 long = [n for n in re.findall(r"\d+\.\d+(?:e[-+]?\d+)?", text)
         if len(n.split("e")[0].replace(".", "").lstrip("0")) > 6]
 rkcase.check(not long, f"report.md prints no number with more than 6 significant digits {long[:3]}")
-final = report.split("## Final values (history.csv)\n\n", 1)[1].split("\n\n", 1)[0].splitlines()
+# (the table after the sentence on its basis: the modeled part's, the press force the whole part's)
+final = report.split("## Final values (history.csv)\n\n", 1)[1].split("\n\n", 2)[1].splitlines()
 units = {c[1].strip(): c[3].strip() for c in (ln.split("|") for ln in final[2:])}
 columns = next(csv.reader(open(case / "history.csv")))
 rkcase.check(final[0] == "| quantity | value | unit |" and list(units) == columns and all(units.values())
              and units["time"] == "s" and units["kinetic"] == "J" and units["max_penetration"] == "m",
              f"report.md's final values: {len(units)} history columns, each with its unit (time s, kinetic J, ...)")
-largest = re.search(r"\| energy balance \| largest error (\S+) % of the energy scale \(at the end (\S+) %\)", report)
+largest = re.search(r"\| energy balance \| largest error (\S+) % of the energy scale past the start-up \(.*; at the end (\S+) %\)", report)
 solve_json = json.loads((case / "solve.json").read_text())
 # (printed to 3 digits: within 1 %; the last row's error differs by 21 % on this bar at 12 us)
 rkcase.check(largest is not None and abs(float(largest[1]) / (100 * solve_json["max_energy_error"]) - 1) < 1e-2,
