@@ -5,8 +5,8 @@
 // mass-weighted mean, minimum and maximum over the part's points (kTemperatureColumns), with
 // conduction the heat given to the ambient (kConductionColumns), with damage its criteria's largest
 // values (kDamageColumns), then per rigid wall its force along
-// its normal, per die its stroke, press force (along its motion, times force_factor), force
-// components, press work, filled fraction (the touched share of its surface that faces the part) and
+// its normal, per die its stroke, press force (along its motion, times force_factor: the whole part's),
+// force components, press work (the modeled part's, like the energies), filled fraction (the touched share of its surface that faces the part) and
 // with conduction the heat conducted into it, for a press-driven die its ram's speed and delivered energy,
 // per fixed face its reaction components, per prescribed face its stroke and reaction components.
 #pragma once
