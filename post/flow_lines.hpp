@@ -2,8 +2,9 @@
 // plane at t = 0, taken as lines along a direction in it, drawn through their current positions at
 // every frame show how the material flowed: the deformed part's "grain flow" of a billet cut from bar
 // stock. A particle joins the line k (in-plane offset k x spacing across the direction) when it lies
-// within half a particle spacing of the plane and of that offset; a line's particles are joined in
-// the order of their position along the direction at t = 0.
+// within half a particle spacing of the plane and of that offset and is the nearest to the line of
+// those in its layer (within a quarter spacing along it); a line's particles are joined in the order
+// of their position along the direction at t = 0.
 #pragma once
 #include <cstdint>
 #include <vector>
