@@ -652,6 +652,11 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     if (o.integration == "nodal" && o.cell_rule != "gauss")
       throw Error(name + ": key 'discretization.cell_rule' = " + o.cell_rule + " places the points of Gauss cells, "
                   "which 'discretization.integration' = nodal does not use; leave it out or use gauss");
+    // (2, the default, is what a resolved scene records whatever the integration: only another order is
+    // refused; with a four- or six-point rule the order is the tetrahedra's, so used)
+    if (o.gauss_order != 2 && o.integration == "nodal")
+      throw Error(name + ": key 'discretization.gauss_order' = " + std::to_string(o.gauss_order) + " sets the Gauss cells' "
+                  "points, which 'discretization.integration' = nodal does not use; leave it out or use gauss");
     o.volumetric = d.text("volumetric", o.volumetric, {"fbar", "none"});
     o.ebc_method = d.text("ebc_method", o.ebc_method, {"nodal", "transformation"});
     o.jitter = d.number("jitter", o.jitter, {0, 0.5, false, true});
@@ -856,6 +861,13 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     s.time.dwell = t.text("dwell", "auto", {"auto", "off"});
     s.time.output_interval = t.number("output_interval", s.time.end / 10, {0, 1e6, true, false});
     s.time.mass_scaling_dt = t.number("mass_scaling_dt", 0.0, {0, 1});
+    // (a step of the whole run scaled the density 4.6e13 times: one step, the die through the part, exit 0)
+    if (s.time.mass_scaling_dt >= s.time.end) {
+      char text[200];
+      std::snprintf(text, sizeof text, " = %g s is not below time.end = %g s: the run would be one step; a quasi-static run "
+                    "takes thousands (the upsetting's 3.6e-7 s of 5.1e-3 s)", s.time.mass_scaling_dt, s.time.end);
+      throw Error(t.where_of("mass_scaling_dt") + text);
+    }
     const YAML::Node ratio = t.get("subcycling", false);
     const bool automatic = !ratio || ratio.IsNull() || (ratio.IsScalar() && ratio.Scalar() == "auto");
     const std::vector<std::string> ratios = {"1", "2", "4", "8", "16"};
@@ -982,6 +994,13 @@ std::vector<std::string> temperature_warnings(const Scene& s) {
 
 std::vector<std::string> accuracy_warnings(const Scene& s) {
   std::vector<std::string> out;
+  if (s.time.mass_scaling_dt > s.time.end / 100) {
+    char text[400];
+    std::snprintf(text, sizeof text, "time.mass_scaling_dt = %g s: the run to time.end = %g s takes at most %.0f steps, "
+                  "too few for the energy check, which starts at step 100, and for a quasi-static answer (the upsetting "
+                  "takes 3.6e-7 s of 5.1e-3 s)", s.time.mass_scaling_dt, s.time.end, std::ceil(s.time.end / s.time.mass_scaling_dt));
+    out.push_back(text);
+  }
   // (with a four- or six-point rule the order is a tetrahedron's alone, one point or four)
   if (s.discretization.integration == "gauss" && s.discretization.gauss_order == 1 && s.discretization.cell_rule == "gauss")
     out.push_back("discretization.gauss_order = 1: one integration point per cell leaves the cells' hourglass modes "

@@ -273,9 +273,7 @@ TEST(Scene, OneGaussPointPerCellIsWarnedByItsKey) {
   ASSERT_EQ(w.size(), 1u);
   EXPECT_NE(w[0].find("discretization.gauss_order = 1"), std::string::npos) << w[0];
   EXPECT_EQ(rk::scene_warnings(rk::load_scene(write_scene(one))), w);  // what rksolve prints and reports
-  // nodal integration has no Gauss points: the order is not used, so nothing to warn of
-  const auto nodal = replace(one, "  gauss_order: 1\n", "  gauss_order: 1\n  integration: nodal\n");
-  EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(nodal))).empty());
+  // nodal integration has no Gauss points: an order it does not use is refused (AGaussOrderThePointsDoNotUseIsRefused)
   // nor where a hexahedron takes a four- or six-point rule (the order is then a tetrahedron's)
   const auto four = replace(one, "  gauss_order: 1\n", "  gauss_order: 1\n  cell_rule: four_point\n");
   EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(four))).empty());
@@ -523,4 +521,28 @@ TEST(Scene, DamageCriteriaOnlyWhereNamed) {
             std::string::npos);
 }
 
+}  // namespace
+
+// Settings at the edges that ran without a word (a newcomer's probe, 2026-12-07): a mass-scaling target
+// of the whole run scaled the density 4.6e13 times and ran one step with the die through the part; a Gauss
+// order with nodal integration was ignored
+namespace {
+TEST(Scene, AMassScalingStepOfTheWholeRunIsRefusedAndOneOfFewStepsWarnedOf) {
+  const auto one = error_of(std::string(kGood), {{"time.mass_scaling_dt", "1e-6"}}, rk::Side::solve);
+  EXPECT_NE(one.find("key 'time.mass_scaling_dt' = 1e-06 s is not below time.end = 1e-06 s"), std::string::npos) << one;
+  const auto warned = rk::accuracy_warnings(rk::load_scene(write_scene(kGood), {{"time.mass_scaling_dt", "1e-7"}}));
+  EXPECT_TRUE(std::any_of(warned.begin(), warned.end(), [](const std::string& w) {
+    return w.find("time.mass_scaling_dt = 1e-07 s: the run to time.end = 1e-06 s takes at most 10 steps") != std::string::npos;
+  }));
+  EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(kGood), {{"time.mass_scaling_dt", "1e-8"}})).empty());
+}
+
+TEST(Scene, AGaussOrderThePointsDoNotUseIsRefused) {
+  const auto nodal = error_of(std::string(kGood), {{"discretization.integration", "nodal"}, {"discretization.gauss_order", "3"}});
+  EXPECT_NE(nodal.find("key 'discretization.gauss_order' = 3 sets the Gauss cells' points, which "
+                       "'discretization.integration' = nodal does not use"), std::string::npos) << nodal;
+  // (a four- or six-point rule uses it: the tetrahedra's points)
+  EXPECT_EQ(error_of(std::string(kGood), {{"discretization.cell_rule", "six_point"}, {"discretization.gauss_order", "1"}}), "");
+  EXPECT_EQ(error_of(std::string(kGood), {{"discretization.integration", "nodal"}, {"discretization.gauss_order", "2"}}), "");
+}
 }  // namespace
