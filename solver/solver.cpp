@@ -149,6 +149,7 @@ class Simulation {
   std::int64_t last_checkpoint_step_ = 0;
   double plastic_updates_ = 0, point_updates_ = 0;  // this run's stress updates, and those that were plastic
   double max_ebc_error_ = 0;
+  double max_penetration_ = 0;  // over this run's history rows (m)
   std::vector<std::string> start_warnings_;  // found at the start, also in solve.json
 };
 
@@ -485,6 +486,7 @@ void Simulation::history(double dt, bool last) {
   tracks_->record(md_, st_, comm_);
   const double t_end = scene_.time.end, run = t_end - t0_;  // the run's end and length (a stage's own)
   max_ebc_error_ = std::max(max_ebc_error_, row.ebc_error);
+  max_penetration_ = std::max(max_penetration_, row.penetration);
   clock_.last_error = row.energy_error;
   // past the start-up (docs/decisions.md, "The energy check skips the start-up"): the first 100
   // steps, and for a part that starts at rest (its energy scale grows from 0 with the tools' work)
@@ -861,6 +863,7 @@ void Simulation::finish() {
   counts.wall0 = wall0_, counts.setup_s = setup_s_, counts.baseline_mb = baseline_mb_;
   counts.plastic_updates = plastic_updates_, counts.point_updates = point_updates_;
   counts.max_ebc_error = max_ebc_error_, counts.impact_pressure = pressure_bound_.impact;
+  counts.max_penetration = max_penetration_, counts.h_min = health_->scales().h_min;
   counts.frames = results_->frames();
   counts.first_step = first_step_;
   counts.start_warnings = start_warnings_;

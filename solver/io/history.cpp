@@ -106,6 +106,7 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
     double* die = &sums_[die0 + kPerDie * d];
     die[0] = t.force[0], die[1] = t.force[1], die[2] = t.force[2], die[3] = t.press_work, die[4] = t.heat;
   }
+  const double tools_depth = penetration;  // the dies' and walls' alone (the parts' own contact below)
   s.contact_work += st.part_contact_work, s.spring_energy += parts.spring_energy();
   s.part_contacts = double(parts.contacts());
   penetration = std::max(penetration, parts.max_penetration());
@@ -114,10 +115,12 @@ HistoryRow History::record(const Model& md, const State& st, const DieContact& d
   comm.sum(sums_.data(), int(sums_.size()));
   for (std::size_t k = 0; k < kSumCount; ++k) s.*kSumFields[k] = sums_[k];
   // then the damage criteria's largest values (0 without damage)
-  double worst[5 + kDamageCriteria] = {penetration, ebc.max_error(md, st, st.t), dies.symmetry_depth(), -coolest, hottest};
+  double worst[6 + kDamageCriteria] = {penetration, ebc.max_error(md, st, st.t), dies.symmetry_depth(), -coolest, hottest};
+  worst[5 + kDamageCriteria] = tools_depth;
   for (std::size_t k = 0; k < st.damage.size(); ++k) worst[5 + k % kDamageCriteria] = std::max(worst[5 + k % kDamageCriteria], st.damage[k]);
   comm.max(worst, int(std::size(worst)));
   out.ebc_error = worst[1];
+  out.penetration = worst[5 + kDamageCriteria];
 
   // The balance of the part (docs/scene.md, "Energy"): KE + internal = KE0 + W_ext + W_contact, with
   // W_contact the work of the contact forces on the material they hold. The penalty springs' energy

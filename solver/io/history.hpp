@@ -48,6 +48,7 @@ struct HistoryRow {
   double energy_error = 0;     // |E - E0 - W| / scale (energy_error), reference updates' smoothing excluded
   double kinetic_internal = 0; // KE / internal energy (0 before any internal energy)
   double ebc_error = 0;        // the essential BCs' largest violation (m)
+  double penetration = 0;      // the material's deepest point inside a die or rigid wall (m)
 };
 
 class History {

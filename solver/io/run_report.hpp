@@ -25,6 +25,8 @@ struct RunCounts {
   double baseline_mb = 0;         // resident memory before any data: the program and its libraries
   double plastic_updates = 0, point_updates = 0;  // this rank's stress updates, and those that were plastic
   double max_ebc_error = 0;       // the essential BCs' largest violation seen (m)
+  double max_penetration = 0;     // the material's deepest point inside a die or rigid wall seen (m)
+  double h_min = 0;               // the smallest particle spacing (m)
   double impact_pressure = 0;     // rho0 c_L v_max (Pa)
   std::int64_t frames = 0;
   std::int64_t first_step = 0;  // the step this run started from (0, or a checkpoint's)
