@@ -69,17 +69,16 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
       throw Error(case_dir + "/history.csv: written by another version of rksolve (column " + std::to_string(k + 1) +
                   " is '" + (k < names.size() ? names[k] : std::string()) + "', this rkpost reads '" +
                   kHistoryScalars[k].name + "'); re-run rksolve on the case");
-  // each moving die (a `.stroke` and a `.force` column): its largest press force and the stroke there
+  // each moving die (a `.stroke` and a `.force` column): its stroke and press force at every row
   struct Press {
     std::string die;
-    std::size_t stroke = 0;
-    double peak = 0, at = 0, travel = 0;  // travel: the largest |stroke| (0: a die that does not move)
-    std::vector<double> strokes, forces;  // every row's, for the running mean
+    std::size_t stroke = 0;  // the column
+    std::vector<double> strokes, forces;
   };
   std::vector<Press> presses;
   for (std::size_t k = 0; k + 1 < names.size(); ++k)
     if (names[k].ends_with(".stroke") && names[k + 1] == names[k].substr(0, names[k].size() - 7) + ".force")
-      presses.push_back({names[k].substr(0, names[k].size() - 7), k, 0, 0, 0, {}, {}});
+      presses.push_back({names[k].substr(0, names[k].size() - 7), k, {}, {}});
   for (std::size_t line_no = 2; std::getline(hist, line); ++line_no) {
     if (line.empty()) continue;
     const auto row = split(line);
@@ -102,10 +101,7 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
     last = line;
     for (auto& p : presses) {
       if (p.stroke + 1 >= row.size()) continue;
-      const double stroke = number(p.stroke), force = number(p.stroke + 1);
-      p.travel = std::max(p.travel, std::abs(stroke));
-      if (std::abs(force) > std::abs(p.peak)) p.peak = force, p.at = stroke;
-      p.strokes.push_back(stroke), p.forces.push_back(force);
+      p.strokes.push_back(number(p.stroke)), p.forces.push_back(number(p.stroke + 1));
     }
   }
   const auto values = split(last);
@@ -199,7 +195,9 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
     if (folds->empty()) r << "None found.\n";
     for (const auto& line : *folds) r << "- **" << line << "**\n";
   }
-  std::erase_if(presses, [](const Press& p) { return p.travel == 0; });  // a die at rest is no press
+  std::erase_if(presses, [](const Press& p) {  // a die at rest is no press
+    return std::all_of(p.strokes.begin(), p.strokes.end(), [](double s) { return s == 0; });
+  });
   if (!presses.empty()) {
     // The force rings with the stress waves and jumps for a row or two at a reference update: the press is
     // sized by the peak of its running mean over 2 % of the rows (the force plot's), the largest single
@@ -211,13 +209,15 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
     for (const auto& p : presses) {
       const std::size_t n = p.forces.size(), k = std::max<std::size_t>(1, n / 50);
       double mean_peak = 0, mean_at = 0, sum = 0;
+      std::size_t largest = 0;
       for (std::size_t i = 0; i < n; ++i) {  // the window [i + 1 - k, i], its mean at its middle row
         sum += p.forces[i] - (i >= k ? p.forces[i - k] : 0.0);
         if (i + 1 >= k && std::abs(sum / double(k)) > std::abs(mean_peak))
           mean_peak = sum / double(k), mean_at = p.strokes[i + 1 - k + k / 2];
+        if (std::abs(p.forces[i]) > std::abs(p.forces[largest])) largest = i;
       }
-      r << "| " << p.die << " | " << num(mean_peak / 1e3) << " kN | " << num(1e3 * mean_at) << " mm | " << num(p.peak / 1e3)
-        << " kN | " << num(1e3 * p.at) << " mm |\n";
+      r << "| " << p.die << " | " << num(mean_peak / 1e3) << " kN | " << num(1e3 * mean_at) << " mm | "
+        << num(p.forces[largest] / 1e3) << " kN | " << num(1e3 * p.strokes[largest]) << " mm |\n";
     }
     if (fs::exists(case_dir + "/plots/force_stroke.png")) r << "\n![force against stroke](plots/force_stroke.png)\n";
   }

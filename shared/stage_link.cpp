@@ -4,7 +4,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 
 #include "error.hpp"
 #include "hash.hpp"
@@ -25,10 +24,8 @@ void write_stage_link(const std::string& case_dir, const StageLink& link) {
 }
 
 std::string solve_record_hash(const std::string& case_dir) {
-  std::ifstream in(case_dir + "/solve.json", std::ios::binary);
-  if (!in) return "";
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return fnv1a_hex(text);
+  const std::string path = case_dir + "/solve.json";
+  return std::filesystem::exists(path) ? file_hash(path) : "";
 }
 
 bool read_stage_link(const std::string& case_dir, StageLink& link) {

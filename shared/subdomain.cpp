@@ -4,7 +4,6 @@
 #include <cstdio>
 
 #include <fstream>
-#include <iterator>
 
 #include "error.hpp"
 #include "h5file.hpp"
@@ -18,16 +17,6 @@ std::string subdomain_path(const std::string& case_dir, int rank) {
   std::snprintf(name, sizeof name, "rank_%04d.h5", rank);
   return case_dir + "/sub/" + name;
 }
-
-namespace {
-
-std::string file_hash(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return fnv1a_hex(bytes);
-}
-
-}  // namespace
 
 std::string subdomain_hash_path(const std::string& path) { return path + ".fnv1a"; }
 

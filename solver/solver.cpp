@@ -593,14 +593,14 @@ void check_one_partition(const std::string& partition, const std::string& case_d
 Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     : opt_(opt), comm_(comm), wall0_(comm.wtime()), baseline_mb_(process_memory_mb("VmRSS:")) {
   // baseline_mb_: the program and its libraries (MPI), before any data
-  std::vector<Override> recorded;  // a restart's: the run's own --set values (io/run_scene.hpp)
+  std::vector<Override> sets = opt.overrides;  // a restart's: the run's own --set values, then its own (io/run_scene.hpp)
   scene_ = collectively(comm, [&] {
-    return opt.restart ? restart_scene(opt.case_dir, opt.overrides, recorded)
+    return opt.restart ? restart_scene(opt.case_dir, opt.overrides, sets)
                        : load_scene(opt.case_dir + "/scene.resolved.yaml", opt.overrides, Side::solve);
   });
-  if (!recorded.empty() && !opt.quiet && comm.rank() == 0) {
-    std::fprintf(stderr, "rksolve: restart with the run's own");
-    for (const Override& o : recorded) std::fprintf(stderr, " --set %s=%s", o.path.c_str(), o.value.c_str());
+  if (opt.restart && !sets.empty() && !opt.quiet && comm.rank() == 0) {
+    std::fprintf(stderr, "rksolve: restart with");
+    for (const Override& o : sets) std::fprintf(stderr, " --set %s=%s", o.path.c_str(), o.value.c_str());
     std::fprintf(stderr, "\n");
   }
   std::string stage_checkpoint;  // a stage: the previous case's checkpoint, and what its dies carry over
@@ -692,20 +692,16 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
       std::snprintf(times, sizeof times, "key 'time.end' = %g s is before the checkpoint's t = %g s", scene_.time.end, st_.t);
       throw Error(times + (" (" + path + "): a restart goes on to a later time.end"));
     }
-    // the next restart goes on with this one's end, intervals and bounds (only those may differ)
-    collectively(comm, [&] {
-      return comm.rank() == 0 ? (write_run_scene(opt.case_dir, scene_, merged_sets(recorded, opt.overrides)), 0) : 0;
-    });
   } else {
     collectively(comm, [&] { return remove_checkpoints(opt.case_dir, comm.rank()), 0; });
-    collectively(comm, [&] {
-      if (comm.rank() != 0) return 0;
-      write_run_scene(opt.case_dir, scene_, opt.overrides);
-      // a run without --from is no stage: an earlier run's link would chain it to another case's frames
-      if (opt.from.empty()) std::filesystem::remove(opt.case_dir + "/" + kStageLinkFile);
-      return 0;
-    });
   }
+  collectively(comm, [&] {
+    if (comm.rank() != 0) return 0;
+    write_run_scene(opt.case_dir, scene_, sets);  // (a restart's too: the next goes on with its end and intervals)
+    // a run without --from or --restart is no stage: an earlier run's link would chain it to another case's frames
+    if (opt.from.empty() && !opt.restart) std::filesystem::remove(opt.case_dir + "/" + kStageLinkFile);
+    return 0;
+  });
   if (!opt.from.empty()) {  // a stage: the previous case's final state, this stage's own records
     collectively(comm, [&] { return read_checkpoint(stage_checkpoint, md_, st_, clock_, *dies_, &carry), 0; });
     clock_.next_history = st_.t;  // a row at the stage's start

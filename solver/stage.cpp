@@ -76,13 +76,14 @@ StageLink begin_stage(const std::string& from_arg, const std::string& case_dir, 
   collectively(comm, [&] {
     // a stage runs on its previous stage's ranks (its particles where they were): the previous rank files'
     // own message would have the user prepare the previous stage again
-    std::ifstream prep(from + "/prep.json");
-    const auto j = nlohmann::json::parse(prep, nullptr, false);
-    if (j.is_object() && j.contains("ranks") && j["ranks"].is_number_integer() && j["ranks"].get<int>() != comm.size()) {
-      const std::string n = std::to_string(j["ranks"].get<int>());
-      std::ifstream own(case_dir + "/prep.json");  // this stage prepared for them already: only the job's count is off
-      const auto mine = nlohmann::json::parse(own, nullptr, false);
-      const bool ready = mine.is_object() && mine.contains("ranks") && mine["ranks"] == j["ranks"];
+    const auto prepared_ranks = [](const std::string& dir) {  // prep.json's rank count, 0 where unreadable
+      std::ifstream in(dir + "/prep.json");
+      const auto j = nlohmann::json::parse(in, nullptr, false);
+      return j.is_object() && j.contains("ranks") && j["ranks"].is_number_integer() ? j["ranks"].get<int>() : 0;
+    };
+    if (const int ranks = prepared_ranks(from); ranks > 0 && ranks != comm.size()) {
+      const std::string n = std::to_string(ranks);
+      const bool ready = prepared_ranks(case_dir) == ranks;  // only the job's count is off
       throw Error("--from " + from + ": the previous stage was prepared for " + n + " ranks and this job has " +
                   std::to_string(comm.size()) + "; a stage runs on its previous stage's ranks: " +
                   (ready ? "" : "prepare " + case_dir + " with rkprep --ranks " + n + " and ") + "run it with mpirun -np " + n);

@@ -12,9 +12,11 @@ namespace rk {
 
 namespace {
 
-constexpr double kSoftContactDepth = 0.1;  // of the spacing: a soft contact past it
+// of the smallest spacing: a soft contact past it (the test suite's runs at the default penalty go in up to
+// 0.075 of their median spacing, the Taylor bar's impact on a penalty wall; the back extrusion 0.037)
+constexpr double kSoftContactDepth = 0.2;
 // of the energy scale: reference updates that took more (the Taylor bar at reference_updates.strain 0.2, the
-// updates as designed, gives 6.3 %; at 1e-6, an update every other step, 14 %)
+// updates as designed, gives 6.3 %; at 1e-6, 13-14 %)
 constexpr double kLostToUpdates = 0.1;
 
 // Collective; the summary is complete on rank 0.
@@ -90,19 +92,19 @@ RunSummary summarize(const Scene& scene, const Model& md, const State& st, const
     s.warnings.push_back(text);
   }
   // A soft contact: the penalty lets the material into the tools by a fair part of a spacing (a run at
-  // contact.penalty_scale 1e-9 let the die through the upsetting's billet, 0.16 spacing, its force 0.06 N
-  // against 64 kN; the shipped forming scenes go in under 0.002 spacing): the tools' forces read low
+  // contact.penalty_scale 1e-9 let the die into the upsetting's billet by 0.22 of its smallest spacing in
+  // 0.5 ms, and on through it): the tools' forces read low
   if (counts.h_min > 0 && counts.max_penetration > kSoftContactDepth * counts.h_min) {
     char text[400];
     std::snprintf(text, sizeof text,
                   "the material went %.3g m (%.2g of the particle spacing) into the dies or rigid walls "
                   "(contact.penalty_scale = %.3g): the contact is soft, so the tools' forces read low and the part "
-                  "passes into them; raise contact.penalty_scale (1, the default, holds the shipped scenes under 0.002 "
-                  "of a spacing)", counts.max_penetration, counts.max_penetration / counts.h_min, scene.contact.penalty_scale);
+                  "passes into them; raise contact.penalty_scale (at the default 1 the test suite's runs stay under 0.08 of "
+                  "a spacing)", counts.max_penetration, counts.max_penetration / counts.h_min, scene.contact.penalty_scale);
     s.warnings.push_back(text);
   }
-  // Reference updates that smoothed away much of the kinetic energy (a strain of 1e-6 updated 44 times in
-  // 88 steps and removed 13 % of the Taylor bar's): the energy check leaves that work out of its balance
+  // Reference updates that smoothed away much of the kinetic energy (a strain of 1e-6 removed 13 % of the
+  // Taylor bar's at 1.2 mm): the energy check leaves that work out of its balance
   double update_work = st.update_work;
   comm.sum(&update_work, 1);
   if (clock.energy_scale > 0 && std::abs(update_work) > kLostToUpdates * clock.energy_scale) {

@@ -52,13 +52,7 @@ std::string changed(const Keys& started, const Keys& now) {
   return said;
 }
 
-}  // namespace
-
-bool restart_may_change(const std::string& key) {
-  return key == "time.end" || key == "time.output_interval" || key == "output.checkpoint_steps" ||
-         key == "output.checkpoint_minutes" || key.rfind("health.", 0) == 0;
-}
-
+// `earlier` then `later`, each path once, with its last value (in the order first given)
 std::vector<Override> merged_sets(const std::vector<Override>& earlier, const std::vector<Override>& later) {
   std::vector<Override> all;
   for (const auto* list : {&earlier, &later})
@@ -68,6 +62,13 @@ std::vector<Override> merged_sets(const std::vector<Override>& earlier, const st
       else at->value = o.value;
     }
   return all;
+}
+
+}  // namespace
+
+bool restart_may_change(const std::string& key) {
+  return key == "time.end" || key == "time.output_interval" || key == "output.checkpoint_steps" ||
+         key == "output.checkpoint_minutes" || key.rfind("health.", 0) == 0;
 }
 
 void write_run_scene(const std::string& case_dir, const Scene& scene, const std::vector<Override>& overrides) {
@@ -80,19 +81,19 @@ void write_run_scene(const std::string& case_dir, const Scene& scene, const std:
                                             std::string(e.c_str()) + "\n");
 }
 
-Scene restart_scene(const std::string& case_dir, const std::vector<Override>& overrides, std::vector<Override>& recorded) {
+Scene restart_scene(const std::string& case_dir, const std::vector<Override>& overrides, std::vector<Override>& sets) {
   const std::string path = case_dir + kRunScene, file = case_dir + "/scene.resolved.yaml";
   if (!std::filesystem::exists(path)) {
     const std::string first = checkpoint_path(case_dir, 0);
     if (!std::filesystem::exists(first) && !std::filesystem::exists(first + ".previous"))  // nothing to restart from: said later
-      return load_scene(file, overrides, Side::solve);
+      return sets = overrides, load_scene(file, overrides, Side::solve);
     throw Error(path + ": not found: the checkpoints hold no record of their run's scene (an older rksolve wrote them); "
                        "run without --restart to start anew");
   }
   YAML::Node run;
+  std::vector<Override> recorded;
   try {
     run = YAML::LoadFile(path);
-    recorded.clear();
     for (const auto& s : run["sets"]) recorded.push_back(parse_override(s.as<std::string>()));
   } catch (const YAML::Exception& e) {
     throw Error(path + ": unreadable (" + e.what() + "); run without --restart to start anew");
@@ -102,7 +103,8 @@ Scene restart_scene(const std::string& case_dir, const std::vector<Override>& ov
   if (!edited.empty())
     throw Error(file + ": " + edited + " (" + path + "): a restart goes on with its run's scene; undo the edit, or "
                 "run without --restart to start anew");
-  Scene scene = load_scene(file, merged_sets(recorded, overrides), Side::solve);
+  sets = merged_sets(recorded, overrides);
+  Scene scene = load_scene(file, sets, Side::solve);
   const std::string set = changed(started, keys_of(YAML::Load(scene.resolved_yaml)));
   if (!set.empty())
     throw Error("--set: " + set + ": a restart goes on with its run's scene and may change only time.end, "

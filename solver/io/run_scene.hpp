@@ -12,19 +12,15 @@
 namespace rk {
 
 // The run's record (rank 0; the checkpoint folder made if needed): a fresh run's, and a restart's with
-// its own --set values after the run's (merged_sets), so that the next restart goes on with its end,
-// intervals and bounds.
+// the sets restart_scene gave, so that the next restart goes on with its end, intervals and bounds.
 void write_run_scene(const std::string& case_dir, const Scene& scene, const std::vector<Override>& overrides);
-
-// `earlier` then `later`, each path once, with its last value (in the order first given).
-std::vector<Override> merged_sets(const std::vector<Override>& earlier, const std::vector<Override>& later);
 
 // The scene a restart goes on with: scene.resolved.yaml with the run's recorded --set values, then the
 // restart's own. The restart's may change only the keys that do not change the answer so far
-// (restart_keys: the end, the output and checkpoint intervals, the health bounds); any other key that
-// differs from the run's, by an edit of scene.resolved.yaml or a --set, is an error naming it.
-// `recorded` gets the run's --set values (for the banner).
-Scene restart_scene(const std::string& case_dir, const std::vector<Override>& overrides, std::vector<Override>& recorded);
+// (restart_may_change: the end, the output and checkpoint intervals, the health bounds); any other key
+// that differs from the run's, by an edit of scene.resolved.yaml or a --set, is an error naming it.
+// `sets` gets the --set values the restart goes on with, the run's then its own, each key once.
+Scene restart_scene(const std::string& case_dir, const std::vector<Override>& overrides, std::vector<Override>& sets);
 
 // Whether a restart may change `key` (a dotted path).
 bool restart_may_change(const std::string& key);

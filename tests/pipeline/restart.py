@@ -119,21 +119,6 @@ ckpt = interrupted / "checkpoint" / "rank_0001.h5"
 deadline = time.time() + 120
 while not ckpt.exists() and time.time() < deadline and job.poll() is None:  # well into the run
     time.sleep(0.05)
-# a second rksolve into the case while this one runs is refused (two runs' history rows interleaved and
-# both exited 0), and leaves the running one alone: its restart below still ends bitwise equal
-second = tools.solve(interrupted, 2, sets=long, expect_ok=False)
-rkcase.check(second.returncode != 0 and "another rksolve or rkprep is writing this case" in second.stderr and job.poll() is None,
-             f"a second run into the running case: exit {second.returncode}, {second.stderr.strip()[:200]}")
-# and so is an rkprep --force into it (it removed the running solve's results and lock under it)
-reprep = tools.run([tools.bin / "rkprep", rkcase.TAYLOR, "--ranks", 2, "--out", interrupted, "--force", "--quiet",
-                    "--set", "discretization.spacing=1.2e-3"], expect_ok=False)
-rkcase.check(reprep.returncode != 0 and "another rksolve or rkprep is writing this case" in reprep.stderr
-             and job.poll() is None and ckpt.exists(),
-             f"rkprep --force into the running case: exit {reprep.returncode}, {reprep.stderr.strip()[:200]}")
-# rkpost meanwhile merges the frames so far and says the run is still going (it said the run did not finish)
-during = tools.post(interrupted)
-rkcase.check("rksolve is still running in it" in during.stderr and job.poll() is None,
-             f"rkpost during the run: {during.stderr.strip()[:200]}")
 job.send_signal(signal.SIGINT)
 _, err = job.communicate(timeout=60)
 said = [ln for ln in err.splitlines() if "rksolve: error" in ln]
@@ -181,3 +166,29 @@ running = job.poll() is None
 job.wait(timeout=300)
 rkcase.check(running and ckpt.exists() and job.returncode == 0,
              "output.checkpoint_minutes = 0.002 (0.12 s): a checkpoint was written while the run was going")
+
+# While a run goes on in a case (its own job, long enough for every check, stopped after them; before, the
+# checks ran against the Ctrl-C job above, which could end first on a loaded machine):
+# - a second rksolve into it is refused (two runs' history rows interleaved and both exited 0);
+# - so is an rkprep --force (it removed the running solve's results and lock under it);
+# - rkpost merges the frames so far and says the run is still going (it said the run did not finish);
+# and the running job goes on untouched.
+busy = copy("busy")
+job = subprocess.Popen(["mpirun", "-np", "2", str(tools.bin / "rksolve"), str(busy), "--set", "time.end=1e-3",
+                        "--set", "time.cfl=0.03", "--set", "time.output_interval=1e-6"],
+                       env=grace, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+deadline = time.time() + 120
+while not (busy / "results" / "rank_0001").exists() and time.time() < deadline and job.poll() is None:
+    time.sleep(0.05)
+second = tools.solve(busy, 2, sets=long, expect_ok=False)
+rkcase.check(second.returncode != 0 and "another rksolve or rkprep is writing this case" in second.stderr,
+             f"a second run into the running case: exit {second.returncode}, {second.stderr.strip()[:200]}")
+reprep = tools.run([tools.bin / "rkprep", rkcase.TAYLOR, "--ranks", 2, "--out", busy, "--force", "--quiet",
+                    "--set", "discretization.spacing=1.2e-3"], expect_ok=False)
+rkcase.check(reprep.returncode != 0 and "another rksolve or rkprep is writing this case" in reprep.stderr,
+             f"rkprep --force into the running case: exit {reprep.returncode}, {reprep.stderr.strip()[:200]}")
+during = tools.post(busy)
+rkcase.check("rksolve is still running in it" in during.stderr, f"rkpost during the run: {during.stderr.strip()[:200]}")
+rkcase.check(job.poll() is None and (busy / "sub").exists(), "the running job goes on through the three")
+job.send_signal(signal.SIGINT)  # (stopped as a user would: mpirun's SIGKILL could leave its ranks running)
+job.communicate(timeout=60)
