@@ -134,6 +134,11 @@ TEST(Scene, MaterialConstantsNoMetalHasAreWarnedByTheirKeys) {
   EXPECT_TRUE(has(gcc, "material.density = 8.93 kg/m^3 is outside any metal's")) << gcc.size();
   const auto strong = rk::material_warnings(rk::load_scene(write_scene(replace(kGood, "400.0e6", "400.0e9"))));
   EXPECT_TRUE(has(strong, "material.yield_stress = 4e+11 Pa is 3.4 of youngs_modulus")) << (strong.empty() ? "" : strong[0]);
+  // nu near 1/2: the step falls as the volumetric wave's speed rises, (1 - nu) / ((1 + nu) (1 - 2 nu)) under the root:
+  // 111x that at 0.3 for 0.49999, 1.68x for 0.45
+  const auto stiff = rk::material_warnings(rk::load_scene(write_scene(replace(kGood, "poisson_ratio: 0.35", "poisson_ratio: 0.49999"))));
+  EXPECT_TRUE(has(stiff, "material.poisson_ratio = 0.49999: the volumetric wave runs 111x as fast as at 0.3")) << (stiff.empty() ? "" : stiff[0]);
+  EXPECT_TRUE(rk::material_warnings(rk::load_scene(write_scene(replace(kGood, "poisson_ratio: 0.35", "poisson_ratio: 0.45")))).empty());
   // the edges: 1 GPa and 5 % of E pass
   EXPECT_TRUE(rk::material_warnings(rk::load_scene(write_scene(replace(replace(kGood, "117.0e9", "1e9"), "400.0e6", "50e6")))).empty());
 }
