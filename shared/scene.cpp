@@ -3,7 +3,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -65,6 +67,8 @@ class Section {
 
   std::string key_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
   // "file:line: key 'path.key'", for a message about that key
+  bool has(const std::string& key) const { return node_ && node_[key] && !node_[key].IsNull(); }
+
   std::string where_of(const std::string& key) const {
     return where(file_, node_ ? node_[key] : YAML::Node(), key_path(key)) + ": key '" + key_path(key) + "'";
   }
@@ -292,6 +296,21 @@ class Section {
 double unit_length(const std::string& unit) {
   static const std::map<std::string, double> units{{"m", 1.0}, {"mm", 1e-3}, {"cm", 1e-2}, {"in", 0.0254}};
   return units.at(unit);
+}
+
+// The unit of a CAD file as the section gives it (`unit`, default `fallback`). OpenCASCADE reads STEP and IGES
+// in millimetres, converting from the unit the file declares, so any other unit would scale such a file
+// twice: a millimetre STEP at `cm` came out 10x, an inch STEP at `in` 25.4x (6.3 litres for a 20 mm
+// billet, accepted). Refused by key.
+double cad_unit(Section& s, const std::string& cad, const std::string& fallback) {
+  const std::string unit = s.text("unit", fallback, {"m", "mm", "cm", "in"});
+  std::string ext = std::filesystem::path(cad).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (unit != "mm" && (ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs"))
+    throw Error(s.where_of("unit") + " = " + unit + (s.has("unit") ? "" : " (the default)") + ": " +
+                std::filesystem::path(cad).filename().string() + " is read in millimetres whatever unit it declares "
+                "(OpenCASCADE converts STEP and IGES), so its unit must be mm");
+  return unit_length(unit);
 }
 
 // --set key.path=value; a list entry is named by its index: dies[0].friction=0.2.
@@ -619,7 +638,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     s.geometry.cad = (p.is_absolute() ? p : (s.dir / p)).lexically_normal().string();
     g.record("cad", s.geometry.cad);  // the resolved deck holds the absolute path
     const std::string unit = g.text("unit", "m", {"m", "mm", "cm", "in"});
-    s.geometry.unit = unit_length(unit);
+    s.geometry.unit = cad_unit(g, s.geometry.cad, "m");
     g.list("bodies", [&](Section& b) {
       Scene::Body body;
       body.name = b.name(std::nullopt);
@@ -628,7 +647,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
       std::filesystem::path c(b.text("cad", std::nullopt));
       body.cad = (c.is_absolute() ? c : (s.dir / c)).lexically_normal().string();
       b.record("cad", body.cad);
-      body.unit = unit_length(b.text("unit", unit, {"m", "mm", "cm", "in"}));
+      body.unit = cad_unit(b, body.cad, unit);
       s.bodies.push_back(body);
     });
     if (s.bodies.size() + 1 > std::size_t(kMaxBodies))  // the part's and the bodies' ids in 7 bits of particles/flags
@@ -750,7 +769,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
     std::filesystem::path p(d.text("cad", std::nullopt));
     die.cad = (p.is_absolute() ? p : (s.dir / p)).lexically_normal().string();
     d.record("cad", die.cad);
-    die.unit = unit_length(d.text("unit", "m", {"m", "mm", "cm", "in"}));
+    die.unit = cad_unit(d, die.cad, "m");
     die.friction = d.number("friction", 0.0, {0, 10});
     die.shear_factor = d.number("shear_factor", 0.0, {0, 1});
     die.motion = read_motion(d, true);

@@ -122,6 +122,19 @@ TEST(Scene, NamesAreColumnHeadsUniqueAmongDiesWallsAndFaces) {
   EXPECT_NE(wall.find("key 'dies[0].name': two dies, rigid walls or faces named 'die'"), std::string::npos) << wall;
 }
 
+// STEP and IGES come in millimetres from OpenCASCADE, whatever unit the file declares: another unit would
+// scale them twice (a millimetre STEP at cm 10x), so it is refused by key, the default's too
+TEST(Scene, AStepOrIgesFileTakesMillimetres) {
+  const std::string step = replace(kGood, "cad: bar.geo", "cad: bar.STEP");
+  EXPECT_EQ(rk::load_scene(write_scene(step)).geometry.unit, 1e-3);
+  const auto cm = error_of(replace(step, "  unit: mm\n", "  unit: cm\n"));
+  EXPECT_NE(cm.find("key 'geometry.unit' = cm: bar.STEP is read in millimetres whatever unit it declares"), std::string::npos) << cm;
+  const auto fallback = error_of(replace(replace(kGood, "cad: bar.geo", "cad: bar.igs"), "  unit: mm\n", ""));
+  EXPECT_NE(fallback.find("key 'geometry.unit' = m (the default): bar.igs is read in millimetres"), std::string::npos) << fallback;
+  // BREP and .geo carry bare numbers: any unit
+  EXPECT_EQ(rk::load_scene(write_scene(replace(replace(kGood, "cad: bar.geo", "cad: bar.brep"), "unit: mm", "unit: in"))).geometry.unit, 0.0254);
+}
+
 // Constants in another unit run and give a wrong answer (E in GPa: the whole run in one step): warned by key
 TEST(Scene, MaterialConstantsNoMetalHasAreWarnedByTheirKeys) {
   EXPECT_TRUE(rk::material_warnings(rk::load_scene(write_scene(kGood))).empty());
