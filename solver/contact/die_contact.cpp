@@ -227,7 +227,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
   for (std::size_t k = 0; k < dies_.size() + planes_.size(); ++k) {
     const bool die = k < dies_.size();
     const DieMotion* mo = die ? &dies_[k].motion : nullptr;
-    const double stroke = die ? this->stroke(k, t) : 0.0, rate = die ? this->rate(k, t) : 0.0;
+    const double stroke = die ? this->stroke(k, t) : 0.0, rate = die ? rate_before(k, t, st.dt_half) : 0.0;
     const double die_moved = die ? std::abs(stroke - stroke_last_[k]) : 0.0;
     if (die) stroke_last_[k] = stroke, die_moved_[k] = die_moved;
     // Coulomb at the slaves; with a shear factor the faces take the friction (face_friction)
@@ -331,7 +331,7 @@ void DieContact::face_friction(const Model& md, const State& st, double t, doubl
     for (std::size_t k = 0; k < dies_.size(); ++k) {
       const Die& die = dies_[k];
       if (!(die.shear_factor > 0)) continue;
-      const double rate = this->rate(k, t), touch = kFaceTouch * std::sqrt(area);
+      const double rate = rate_before(k, t, st.dt_half), touch = kFaceTouch * std::sqrt(area);
       double& clear = face_clearance_[k * faces + f];
       clear -= face_N_sum_[f] * moved_ + die_moved_[k];
       if (clear > touch) continue;  // still farther than its touch distance: no lookup

@@ -91,6 +91,16 @@ class DieContact {
   // Presses last told drive().
   double stroke(std::size_t k, double t) const { return dies_[k].motion.driven() ? driven_[2 * k] : dies_[k].motion.stroke(t); }
   double rate(std::size_t k, double t) const { return dies_[k].motion.driven() ? driven_[2 * k + 1] : dies_[k].motion.rate(t); }
+  // Die k's velocity over the step that brought the part to t (dt long, 0 at the first), the step of the part's
+  // v^{n-1/2} that the contact meets it with: a curve's slope changes at its points, and its slope after t (the
+  // next step's) read the last row of a run ending where its curve ends with the die already stopped (the hot
+  // upsetting's dashpots: the press force 51.3 kN there against 56.2 kN a row before and 56.4 kN with the curve
+  // run on). Other motions' rate(k, t): a press's is its v^{n-1/2} already.
+  double rate_before(std::size_t k, double t, double dt) const {
+    const DieMotion& mo = dies_[k].motion;
+    if (mo.driven() || mo.curve.empty() || !(dt > 0)) return rate(k, t);
+    return (mo.stroke(t) - mo.stroke(t - dt)) / dt;
+  }
   void drive(std::size_t k, double stroke, double rate) { driven_[2 * k] = stroke, driven_[2 * k + 1] = rate; }
   // This step's force of die k on the part along its direction: the largest single contribution, and
   // their sum in fixed point (the same on every partition).
