@@ -9,7 +9,8 @@
   and the work of the die left out stays in the energy balance;
 - a dwell (a stage without dies or loads: scene_dwell.yaml) of 5 s after hot upsetting advances at the thermal step alone
   (about 90 steps, against 166 000 mechanical steps), the part's heat lost equals the heat to the ambient,
-  and its mean temperature falls as the lumped (Newton and Stefan-Boltzmann) cooling of the billet;
+  and its mean temperature falls as the lumped (Newton and Stefan-Boltzmann) cooling of the billet; with
+  thermal expansion it says that the part's contraction, held, waits for the next stage;
 - bad input: --from an unfinished case, a part prepared at another spacing, other symmetry planes, a
   continuing die with another motion, --from with --restart."""
 import csv
@@ -189,6 +190,21 @@ content = 7850 * 650 * math.pi * 0.01 ** 2 * 0.01 / 4 * (T0 - T1)
 # differs by the billet's faceted surface (measured 2026-12-02: 1.2 %)
 rkcase.check(abs(lost / content - 1) < 0.025, f"the heat the part lost, {content:.2f} J, went to the ambient: {lost:.2f} J")
 rkcase.check(len({r["energy_error"] for r in rows}) == 1, "nothing mechanical happens in the dwell: the energy error stays")
+# The same dwell with the material's thermal expansion (1.4e-5 /K): its shape is held while it cools, and the
+# run says so, with the contraction the next stage's first step will release
+forged_expanding, expanding = tools.case("forged_expanding"), tools.case("rest_expanding")
+tools.prep(forged_expanding, 2, scene=hot, sets=[SPACING])
+tools.solve(forged_expanding, 2, sets=["time.end=0.002", "time.output_interval=0.002"])
+tools.prep(expanding, 2, scene=dwell, sets=[SPACING])
+p = tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", expanding, "--quiet", "--from", forged_expanding])
+held = [r for r in history(expanding)]
+Ta, Tb = float(held[0]["temperature_mean"]), float(held[-1]["temperature_mean"])
+shrink = 100 * (1 - (1 + 1.4e-5 * (Tb - 1423.15)) / (1 + 1.4e-5 * (Ta - 1423.15)))
+warning = f"the dwell moved the part's mean temperature from {Ta:.1f} K to {Tb:.1f} K with its shape and stresses held"
+rkcase.check(warning in p.stderr and f"its thermal contraction of {shrink:.2g} %" in p.stderr
+             and any(warning in w for w in json.loads((expanding / "solve.json").read_text())["warnings"]),
+             f"a dwell that cools the part says that its contraction of {shrink:.2g} % waits for the next stage: {p.stderr.strip()}")
+rkcase.check(not any("the dwell moved" in w for w in after["warnings"]), "without thermal expansion, no such warning")
 # and the next blow goes on from the dwell (scene_hot_second.yaml: a new die from its CAD position, on the
 # billet's end here): its first mechanical step averages with the last mechanical step, not the dwell's
 # thermal one
