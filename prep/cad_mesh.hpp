@@ -23,6 +23,8 @@ struct MeshRequest {
   std::string cad;       // path
   double unit = 1.0;     // metres per CAD unit
   double spacing = 0;    // target particle spacing, metres
+  double dilation = 0;   // the supports' radius over the particles' spacing: solids of the file closer than
+                         // that reach are refused (0: not checked)
 };
 
 // Meshes the solid. .geo scripts see the spacing (in CAD units) as the number `h`

@@ -6,6 +6,7 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <algorithm>
 #include <array>
 #include <filesystem>
 #include <sstream>
@@ -81,6 +82,20 @@ Soup gmsh_boundary(const Die& die, double spacing) {
       soup.points[it->second] = Kernel::Point_3(coord[3 * k] * die.unit, coord[3 * k + 1] * die.unit, coord[3 * k + 2] * die.unit);
   }
   if (soup.triangles.empty()) throw Error("die '" + die.name + "': " + die.cad + ": meshing gave no surface triangles");
+  // A die smaller than a particle spacing across is almost always drawn in another unit (one in metres read
+  // as mm: 40 um, buried inside the billet, where no particle is deep enough to refuse it): refused by name
+  double extent = 0;
+  for (int d = 0; d < 3; ++d) {
+    const auto [a, b] = std::minmax_element(soup.points.begin(), soup.points.end(),
+                                            [d](const Kernel::Point_3& p, const Kernel::Point_3& q) { return p[d] < q[d]; });
+    extent = std::max(extent, CGAL::to_double((*b)[d] - (*a)[d]));
+  }
+  if (extent < spacing) {
+    std::ostringstream s;
+    s << "die '" << die.name << "': " << die.cad << " is " << extent << " m across with its unit of " << die.unit
+      << " m, less than one particle spacing (" << spacing << " m), so no particle can feel it: check its unit";
+    throw Error(s.str());
+  }
   return soup;
 }
 

@@ -72,6 +72,22 @@ void tet_shape(const double* xi, double* N, double (*dN)[3]) {
 
 }  // namespace
 
+std::vector<double> node_spacing(const VolumeMesh& mesh) {
+  std::vector<double> spacing(mesh.node_count(), 0.0);
+  std::vector<int> edges(mesh.node_count(), 0);
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
+    const std::int32_t* nodes = mesh.cell_nodes.data() + mesh.cell_offsets[c];
+    for (auto [a, b] : cell_edges(mesh.cell_offsets[c + 1] - mesh.cell_offsets[c])) {
+      const double* p = &mesh.X[3 * std::size_t(nodes[a])];
+      const double* r = &mesh.X[3 * std::size_t(nodes[b])];
+      const double len = std::sqrt((p[0] - r[0]) * (p[0] - r[0]) + (p[1] - r[1]) * (p[1] - r[1]) + (p[2] - r[2]) * (p[2] - r[2]));
+      for (int e : {a, b}) spacing[std::size_t(nodes[e])] += len, ++edges[std::size_t(nodes[e])];
+    }
+  }
+  for (std::size_t i = 0; i < spacing.size(); ++i) spacing[i] = edges[i] > 0 ? spacing[i] / edges[i] : 0.0;
+  return spacing;
+}
+
 const std::vector<std::pair<int, int>>& cell_edges(int nodes_per_cell) {
   static const std::vector<std::pair<int, int>> hex{{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
                                                     {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
@@ -83,8 +99,6 @@ Discretization discretize(const VolumeMesh& mesh, int gauss_order, const std::st
   Discretization d;
   const std::size_t n = mesh.node_count();
   d.volume.assign(n, 0.0);
-  d.spacing.assign(n, 0.0);
-  std::vector<int> edge_count(n, 0);
   const auto hex = hex_rule(gauss_order, cell_rule), tet = tet_rule(gauss_order);
   double N[8], dN[8][3];
   for (std::size_t c = 0; c < mesh.cell_count(); ++c) {
@@ -102,31 +116,24 @@ Discretization discretize(const VolumeMesh& mesh, int gauss_order, const std::st
           for (int k = 0; k < 3; ++k) J(i, k) += mesh.X[3 * nodes[a] + i] * dN[a][k];
         }
       const double detJ = J.determinant();
-      if (!(detJ > 0))
-        throw Error("mesh cell " + std::to_string(c) + " near (" + std::to_string(x[0]) + ", " +
-                    std::to_string(x[1]) + ", " + std::to_string(x[2]) + ") m is inverted or degenerate");
+      if (!(detJ > 0)) {
+        double centre[3] = {0, 0, 0};  // (the nodes' mean: named even where the shape functions are not finite)
+        for (int a = 0; a < per; ++a)
+          for (int i = 0; i < 3; ++i) centre[i] += mesh.X[3 * std::size_t(nodes[a]) + std::size_t(i)] / per;
+        throw Error("mesh cell " + std::to_string(c) + " near (" + std::to_string(centre[0]) + ", " +
+                    std::to_string(centre[1]) + ", " + std::to_string(centre[2]) + ") m is inverted or degenerate (gmsh's mesh of the "
+                    "CAD at this spacing: another discretization.spacing, or for an STL a finer faceting or the STEP, may mesh)");
+      }
       const double w = q.w * detJ;
       d.point_X.insert(d.point_X.end(), x, x + 3);
       d.point_weight.push_back(w);
       d.point_cell.push_back(std::int32_t(c));
       for (int a = 0; a < per; ++a) d.volume[nodes[a]] += w * N[a];
     }
-    for (auto [a, b] : cell_edges(per)) {
-      const double* p = &mesh.X[3 * nodes[a]];
-      const double* r = &mesh.X[3 * nodes[b]];
-      const double len = std::sqrt((p[0] - r[0]) * (p[0] - r[0]) + (p[1] - r[1]) * (p[1] - r[1]) +
-                                   (p[2] - r[2]) * (p[2] - r[2]));
-      for (int e : {a, b}) {
-        d.spacing[nodes[e]] += len;
-        ++edge_count[nodes[e]];
-      }
-    }
   }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (edge_count[i] == 0 || !(d.volume[i] > 0))
-      throw Error("mesh node " + std::to_string(i) + " belongs to no valid cell");
-    d.spacing[i] /= edge_count[i];
-  }
+  d.spacing = node_spacing(mesh);
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(d.spacing[i] > 0) || !(d.volume[i] > 0)) throw Error("mesh node " + std::to_string(i) + " belongs to no valid cell");
   return d;
 }
 

@@ -24,6 +24,9 @@ struct Discretization {
 // hexahedron's rule, "gauss" (gauss_order^3 points), "four_point" or "six_point" (Scene::Discretization)
 Discretization discretize(const VolumeMesh& mesh, int gauss_order, const std::string& cell_rule = "gauss");
 
+// Each node's spacing h_I: the mean length of its cells' edges (0 for a node of no cell).
+std::vector<double> node_spacing(const VolumeMesh& mesh);
+
 // Edges of a cell as pairs of its local node numbers (gmsh ordering).
 const std::vector<std::pair<int, int>>& cell_edges(int nodes_per_cell);
 

@@ -32,7 +32,14 @@ class PhaseTimer {  // wall time per named phase, for prep.json and the progress
   auto run(const std::string& name, Fn fn) {
     if (!quiet_) std::printf("rkprep: %-12s ...", name.c_str()), std::fflush(stdout);
     auto t0 = std::chrono::steady_clock::now();
+    struct EndLine {  // a phase that throws ends its progress line, so that the error starts its own
+      bool quiet, done = false;
+      ~EndLine() {
+        if (!quiet && !done) std::printf(" stopped\n"), std::fflush(stdout);
+      }
+    } end_line{quiet_};
     auto result = fn();
+    end_line.done = true;
     double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     phases_[name] = s;
     if (!quiet_) std::printf(" %.3f s\n", s);
@@ -132,11 +139,12 @@ int run(int argc, char** argv) {
     for (const char* e : rk::kCaseEntries)
       if (std::string_view(e) != rk::kSolveLock) fs::remove_all(fs::path(out) / e);  // (the lock: this one's now)
   }
+  const double dilation = scene.discretization.dilation;
   rk::VolumeMesh mesh = timer.run("mesh", [&] {
-    rk::VolumeMesh m = rk::mesh_cad({scene.geometry.cad, scene.geometry.unit, scene.discretization.spacing});
+    rk::VolumeMesh m = rk::mesh_cad({scene.geometry.cad, scene.geometry.unit, scene.discretization.spacing, dilation});
     std::vector<std::string> names{"part"};
     for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
-      rk::append_body(m, rk::mesh_cad({scene.bodies[b].cad, scene.bodies[b].unit, scene.discretization.spacing}), int(b + 1));
+      rk::append_body(m, rk::mesh_cad({scene.bodies[b].cad, scene.bodies[b].unit, scene.discretization.spacing, dilation}), int(b + 1));
       names.push_back(scene.bodies[b].name);
     }
     rk::check_bodies_apart(m, names, scene.discretization.spacing);

@@ -22,7 +22,14 @@ void check_stl_solid(const std::string& path) {
   std::vector<std::array<std::size_t, 3>> triangles;
   if (!CGAL::IO::read_polygon_soup(path, points, triangles) || triangles.empty())
     throw Error(path + ": cannot read the STL file (or it holds no triangles)");
+  const std::size_t facets = triangles.size();
   PMP::repair_polygon_soup(points, triangles);  // merges the duplicated vertices of STL facets
+  // and drops repeated facets and facets whose corners coincide, which gmsh meshes from the file as they are
+  // ("Wrong topology of boundary mesh for parametrization"): said here, by count
+  if (triangles.size() != facets)
+    throw Error(path + ": " + std::to_string(facets - triangles.size()) + " of its " + std::to_string(facets) +
+                " facets repeat another facet or have coinciding corners (zero area), which gmsh cannot mesh; "
+                "export the STL again, or repair it (remove duplicate and degenerate facets)");
   if (!PMP::is_polygon_soup_a_polygon_mesh(triangles))
     throw Error(path + ": the STL surface is not a consistently oriented manifold (flipped or non-manifold facets)");
   CGAL::Surface_mesh<Kernel::Point_3> mesh;

@@ -1,7 +1,8 @@
 """Bad CAD input is one clear error naming the die or the file, with a non-zero exit: a missing die
-CAD file, a die that is not a closed solid, a workpiece that starts inside a die, a die face in a
+CAD file, a die that is not a closed solid, a die smaller than a particle spacing (another unit), a workpiece that starts inside a die, a die face in a
 symmetry plane that the part rests on, a missing workpiece
-CAD, an unreadable one, and a workpiece given in the wrong unit (millimetres read as metres, refused
+CAD, an unreadable one, a workpiece of two solids within the shape functions' reach of each other, and a
+workpiece given in the wrong unit (millimetres read as metres, refused
 before meshing)."""
 import csv
 import json
@@ -33,6 +34,9 @@ expect(scene_with_die("sunk", 'SetFactory("OpenCASCADE");\nBox(1) = {-2, -2, 9, 
        "the workpiece starts inside the die", "workpiece inside the die")
 expect(scene_with_die("open", 'SetFactory("OpenCASCADE");\nRectangle(1) = {-2, -2, 10, 20, 20};\n'),
        "no closed solid", "die that is only a surface")
+# a die drawn in metres read as millimetres: 0.02 mm across, inside the billet where no particle lies in it
+expect(scene_with_die("tiny", 'SetFactory("OpenCASCADE");\nBox(1) = {0.001, 0.001, 0.005, 0.02, 0.02, 0.003};\n'),
+       "tiny.geo is 2e-05 m across with its unit of 0.001 m, less than one particle spacing (0.0025 m)", "die in another unit")
 # a symmetry plane laid on the die's face (z = 10 mm, where the die meets the billet's top): the plane would
 # hold the billet there and the die read no force
 on_die = w / "plane_on_die.yaml"
@@ -43,7 +47,15 @@ expect(on_die, "particles rest on a face of it that lies in symmetry plane 3", "
 
 scene = rkcase.TAYLOR
 (w / "junk.step").write_text("this is not a STEP file\n")
-for sets, needle, what in (([f"geometry.cad={w / 'junk.step'}"], "junk.step: gmsh failed: Could not read file",
+# two solids of one file 0.5 mm apart, within the supports' reach at the bar's 0.9 mm: they would be tied
+# across the gap (two boxes 1 mm apart at 2.5 mm: the one no die touched took a plastic strain of 0.19)
+boxes = 'SetFactory("OpenCASCADE");\nBox(1) = {{0, 0, 0, 5, 5, 5}};\nBox(2) = {{{x}, 0, 0, 5, 5, 5}};\n' \
+        'Mesh.CharacteristicLengthMax = h;\n'
+(w / "two_solids.geo").write_text(boxes.format(x=5.5))
+(w / "two_solids_apart.geo").write_text(boxes.format(x=15))
+for sets, needle, what in (([f"geometry.cad={w / 'two_solids.geo'}"], "two_solids.geo: holds 2 solids, two of them",
+                            "two solids within the supports' reach"),
+                           ([f"geometry.cad={w / 'junk.step'}"], "junk.step: gmsh failed: Could not read file",
                             "unreadable workpiece CAD"),
                            (["geometry.unit=m"], "the part is 32.4 m across with geometry.unit = 1 m per CAD unit",
                             "Taylor bar in mm read as metres"),
@@ -56,6 +68,8 @@ for sets, needle, what in (([f"geometry.cad={w / 'junk.step'}"], "junk.step: gms
     p = tools.prep(tools.case("bad_cad_case"), 1, scene=scene, sets=sets, expect_ok=False, timeout=60)
     rkcase.check(p.returncode != 0 and needle in p.stderr and p.stderr.count("error:") == 1,
                  f"{what}: {p.stderr.strip()}")
+# the same boxes 10 mm apart, beyond the reach: a part of two pieces, prepared
+tools.prep(tools.case("two_solids_apart"), 1, scene=scene, sets=[f"geometry.cad={w / 'two_solids_apart.geo'}"])
 
 # Suspicious but legal: the die pressing away from the part (direction +z) never touches it. The run
 # completes (exit 0) with a warning naming the die on stderr, in solve.json and in report.md.
