@@ -553,6 +553,14 @@ TEST(Scene, AMassScalingStepOfTheWholeRunIsRefusedAndOneOfFewStepsWarnedOf) {
     return w.find("time.mass_scaling_dt = 1e-07 s: the run to time.end = 1e-06 s takes at most 10 steps") != std::string::npos;
   }));
   EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(kGood), {{"time.mass_scaling_dt", "1e-8"}})).empty());
+  // a hammer's blow against a mass-scaled part: its inertia scaled too (the blow's force 3.2x at the density x 1146)
+  const std::string hammer = std::string(kGood) + "dies:\n  - {name: ram, cad: die.geo, unit: mm, motion: {direction: [0, 0, -1], "
+                             "blow: {energy: 344, ram_mass: 100}}}\n";
+  const auto blow = rk::accuracy_warnings(rk::load_scene(write_scene(hammer), {{"time.mass_scaling_dt", "1e-8"}}));
+  EXPECT_TRUE(std::any_of(blow.begin(), blow.end(), [](const std::string& w) {
+    return w.find("time.mass_scaling_dt with die 'ram''s hammer blow: the blow is dynamic") != std::string::npos;
+  })) << (blow.empty() ? "" : blow[0]);
+  EXPECT_TRUE(rk::accuracy_warnings(rk::load_scene(write_scene(hammer))).empty());
 }
 
 TEST(Scene, AGaussOrderThePointsDoNotUseIsRefused) {
