@@ -42,7 +42,7 @@ class PhaseTimer {  // wall time per named phase, for prep.json and the progress
     end_line.done = true;
     double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     phases_[name] = s;
-    if (!quiet_) std::printf(" %.3f s\n", s);
+    if (!quiet_) std::printf(" %.3f s\n", s), std::fflush(stdout);  // (before a warning on stderr)
     return result;
   }
   nlohmann::json json() const { return phases_; }
@@ -127,6 +127,7 @@ int run(int argc, char** argv) {
   auto t0 = std::chrono::steady_clock::now();
   const rk::Scene scene = rk::load_scene(scene_file, rk::parse_overrides(sets), rk::Side::prep);
   check_case_folder_writable(out);
+  std::fflush(stdout);
   for (const std::string& w : rk::scene_warnings(scene)) std::fprintf(stderr, "rkprep: warning: %s\n", w.c_str());
   // a new case never lies beside another's results: refused, or with --force those files go first;
   // never under a running rksolve (the lock, held to the end of the prep)
@@ -185,6 +186,7 @@ int run(int argc, char** argv) {
   // are 2/pi of the rim's), so only a mesh off by more than half is suspicious.
   const double achieved = rk::median_edge(mesh);
   const bool off = !(std::abs(achieved / scene.discretization.spacing - 1) <= 0.5);
+  std::fflush(stdout);  // (the progress lines before the warning, where both go to one file)
   if (off)
     std::fprintf(stderr,
                  "rkprep: warning: the mesh's median cell edge is %.3g m against discretization.spacing = %.3g m "
