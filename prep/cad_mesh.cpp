@@ -105,11 +105,16 @@ void check_solids_apart(const VolumeMesh& mesh, std::vector<int> group, const Me
   const auto reach = [&](std::size_t I, std::size_t J) { return r.dilation * std::max(h[I], h[J]); };
   const auto [I, J] = near_pair(mesh, group, r.dilation * h_max, reach);
   if (I == mesh.node_count()) return;
+  const double gap = distance(mesh, I, J);
   std::ostringstream s;
-  s << r.cad << ": holds " << solids << " solids, two of them " << distance(mesh, I, J) << " m apart at (" << mesh.X[3 * I] << ", "
+  s << r.cad << ": holds " << solids << " solids, two of them " << gap << " m apart at (" << mesh.X[3 * I] << ", "
     << mesh.X[3 * I + 1] << ", " << mesh.X[3 * I + 2] << ") m, within the shape functions' reach there (discretization.dilation "
-    << "x the particles' spacing = " << reach(I, J) << " m): the part's supports would tie them across the gap as if joined; give "
-    << "the second solid a file of its own under geometry.bodies (a body's supports stop at its surface), or join them";
+    << "x the particles' spacing = " << reach(I, J) << " m): the part's supports would tie them across the gap as if joined; "
+    << (gap >= 0.75 * r.spacing ? "give the second solid a file of its own under geometry.bodies (a body's supports stop at "
+                                  "its surface), or join them"
+                                : "join them (fuse the solids, or mesh them conformally: Coherence in a .geo), or move them "
+                                  "at least 0.75 discretization.spacing apart and give the second a file of its own under "
+                                  "geometry.bodies");
   throw Error(s.str());
 }
 
@@ -133,6 +138,14 @@ VolumeMesh mesh_with_gmsh(const MeshRequest& r) {
     gmsh::open(r.cad);
   } else if (ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs" || ext == ".brep") {
     gmsh::merge(r.cad);
+    gmsh::vectorpair solids;
+    gmsh::model::getEntities(solids, 3);
+    if (solids.size() > 1) {  // solids that touch meshed alike along the faces they share: one part (and
+      gmsh::vectorpair pieces;  // overlapping ones split into pieces that do not overlap, not counted twice)
+      std::vector<gmsh::vectorpair> of;
+      gmsh::model::occ::fragment(solids, {}, pieces, of);
+      gmsh::model::occ::synchronize();
+    }
     set_tet_size(h);
   } else if (ext == ".stl") {
     check_stl_solid(r.cad);
@@ -217,10 +230,13 @@ VolumeMesh mesh_with_gmsh(const MeshRequest& r) {
     for (std::size_t I = 0; I < order.size(); ++I) {
       bool inside = placed[I] != 0;
       for (int d = 0; d < 3 && inside; ++d) inside = mesh.X[3 * I + std::size_t(d)] >= lo[d] && mesh.X[3 * I + std::size_t(d)] <= hi[d];
-      if (!inside)
-        throw Error(r.cad + ": gmsh's volume mesh at discretization.spacing = " + std::to_string(r.spacing) + " m has a node " +
-                    (placed[I] ? "far outside the part" : "without coordinates") +
-                    " (its meshing of this surface failed); another spacing, or for an STL a finer faceting or the STEP, may mesh");
+      if (!inside) {
+        std::ostringstream s;
+        s << r.cad << ": gmsh's volume mesh at discretization.spacing = " << r.spacing << " m has a node "
+          << (placed[I] ? "far outside the part" : "without coordinates")
+          << " (its meshing of this surface failed); another spacing, or for an STL a finer faceting or the STEP, may mesh";
+        throw Error(s.str());
+      }
     }
   }
   // Surface nodes: nodes of the 2-D elements on the volumes' boundaries.
@@ -377,12 +393,14 @@ void append_body(VolumeMesh& mesh, const VolumeMesh& other, int body) {
 
 namespace {
 
-// The first two surface nodes of different groups (group[J] > group[I]) closer than reach(I, J) <= bin, by
-// bins of side `bin`; {n, n} (n the node count) where there are none
+// The closest two surface nodes of different groups (group[J] > group[I]) of those closer than reach(I, J) <=
+// bin_side, by bins of that side; {n, n} (n the node count) where there are none
 template <class Reach>
 std::array<std::size_t, 2> near_pair(const VolumeMesh& mesh, const std::vector<int>& group, double bin_side, Reach reach) {
   std::map<std::array<std::int64_t, 3>, std::vector<std::size_t>> bins;
   auto bin = [&](std::size_t I, int d) { return std::int64_t(std::floor(mesh.X[3 * I + std::size_t(d)] / bin_side)); };
+  std::array<std::size_t, 2> pair{mesh.node_count(), mesh.node_count()};
+  double closest = HUGE_VAL;
   for (std::size_t I = 0; I < mesh.node_count(); ++I)
     if (mesh.surface[I]) bins[{bin(I, 0), bin(I, 1), bin(I, 2)}].push_back(I);
   for (std::size_t I = 0; I < mesh.node_count(); ++I) {
@@ -393,10 +411,11 @@ std::array<std::size_t, 2> near_pair(const VolumeMesh& mesh, const std::vector<i
           auto it = bins.find({bin(I, 0) + a, bin(I, 1) + b, bin(I, 2) + c});
           if (it == bins.end()) continue;
           for (std::size_t J : it->second)
-            if (group[J] > group[I] && distance(mesh, I, J) < reach(I, J)) return {I, J};
+            if (const double r = distance(mesh, I, J); group[J] > group[I] && r < reach(I, J) && r < closest)
+              closest = r, pair = {I, J};
         }
   }
-  return {mesh.node_count(), mesh.node_count()};
+  return pair;
 }
 
 }  // namespace

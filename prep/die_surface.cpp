@@ -39,7 +39,7 @@ Soup gmsh_boundary(const Die& die, double spacing) {
     gmsh::option::setNumber("Mesh.MeshSizeMax", h);
   } else {
     throw Error("die '" + die.name + "': " + die.cad + ": unsupported CAD format '" + ext +
-                "' (a die takes .geo, .step, .iges or .brep; an STL die is not read)");
+                "' (a die takes .geo, .step/.stp, .iges/.igs or .brep; an STL die is not read)");
   }
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 64);  // chord sagitta 0.12 % of the radius ...
   gmsh::option::setNumber("Mesh.MeshSizeMin", 0.25 * h);  // ... or a quarter spacing: finer than the particles can feel

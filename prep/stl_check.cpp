@@ -8,6 +8,7 @@
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -22,14 +23,24 @@ void check_stl_solid(const std::string& path) {
   std::vector<std::array<std::size_t, 3>> triangles;
   if (!CGAL::IO::read_polygon_soup(path, points, triangles) || triangles.empty())
     throw Error(path + ": cannot read the STL file (or it holds no triangles)");
-  const std::size_t facets = triangles.size();
+  // A facet repeated (the same three corners) is dropped by CGAL's repair below, but gmsh meshes the file as it
+  // is and failed ("Wrong topology of boundary mesh for parametrization"): refused here, by count
+  {
+    std::vector<std::array<double, 9>> corners;
+    corners.reserve(triangles.size());
+    for (const auto& t : triangles) {
+      std::array<std::array<double, 3>, 3> c;
+      for (int a = 0; a < 3; ++a) c[std::size_t(a)] = {points[t[std::size_t(a)]].x(), points[t[std::size_t(a)]].y(), points[t[std::size_t(a)]].z()};
+      std::sort(c.begin(), c.end());
+      corners.push_back({c[0][0], c[0][1], c[0][2], c[1][0], c[1][1], c[1][2], c[2][0], c[2][1], c[2][2]});
+    }
+    std::sort(corners.begin(), corners.end());
+    const auto repeated = std::size_t(corners.end() - std::unique(corners.begin(), corners.end()));
+    if (repeated > 0)
+      throw Error(path + ": " + std::to_string(repeated) + " of its " + std::to_string(triangles.size()) +
+                  " facets repeat another facet, which gmsh cannot mesh; export the STL again, or remove the duplicates");
+  }
   PMP::repair_polygon_soup(points, triangles);  // merges the duplicated vertices of STL facets
-  // and drops repeated facets and facets whose corners coincide, which gmsh meshes from the file as they are
-  // ("Wrong topology of boundary mesh for parametrization"): said here, by count
-  if (triangles.size() != facets)
-    throw Error(path + ": " + std::to_string(facets - triangles.size()) + " of its " + std::to_string(facets) +
-                " facets repeat another facet or have coinciding corners (zero area), which gmsh cannot mesh; "
-                "export the STL again, or repair it (remove duplicate and degenerate facets)");
   if (!PMP::is_polygon_soup_a_polygon_mesh(triangles))
     throw Error(path + ": the STL surface is not a consistently oriented manifold (flipped or non-manifold facets)");
   CGAL::Surface_mesh<Kernel::Point_3> mesh;

@@ -302,12 +302,12 @@ double unit_length(const std::string& unit) {
 // in millimetres, converting from the unit the file declares, so any other unit would scale such a file
 // twice: a millimetre STEP at `cm` came out 10x, an inch STEP at `in` 25.4x (6.3 litres for a 20 mm
 // billet, accepted). Refused by key.
-double cad_unit(Section& s, const std::string& cad, const std::string& fallback) {
+double cad_unit(Section& s, const std::string& cad, const std::string& fallback, const char* inherited = "the default") {
   const std::string unit = s.text("unit", fallback, {"m", "mm", "cm", "in"});
   std::string ext = std::filesystem::path(cad).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (unit != "mm" && (ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs"))
-    throw Error(s.where_of("unit") + " = " + unit + (s.has("unit") ? "" : " (the default)") + ": " +
+    throw Error(s.where_of("unit") + " = " + unit + (s.has("unit") ? "" : std::string(" (") + inherited + ")") + ": " +
                 std::filesystem::path(cad).filename().string() + " is read in millimetres whatever unit it declares "
                 "(OpenCASCADE converts STEP and IGES), so its unit must be mm");
   return unit_length(unit);
@@ -647,7 +647,7 @@ Scene load_scene_checked(const std::filesystem::path& file, const std::vector<Ov
       std::filesystem::path c(b.text("cad", std::nullopt));
       body.cad = (c.is_absolute() ? c : (s.dir / c)).lexically_normal().string();
       b.record("cad", body.cad);
-      body.unit = cad_unit(b, body.cad, unit);
+      body.unit = cad_unit(b, body.cad, unit, "from geometry.unit");
       s.bodies.push_back(body);
     });
     if (s.bodies.size() + 1 > std::size_t(kMaxBodies))  // the part's and the bodies' ids in 7 bits of particles/flags

@@ -70,6 +70,10 @@ for sets, needle, what in (([f"geometry.cad={w / 'two_solids.geo'}"], "two_solid
                  f"{what}: {p.stderr.strip()}")
 # the same boxes 10 mm apart, beyond the reach: a part of two pieces, prepared
 tools.prep(tools.case("two_solids_apart"), 1, scene=scene, sets=[f"geometry.cad={w / 'two_solids_apart.geo'}"])
+# a STEP of two solids that touch without sharing their face (a cylinder standing on a box, meshed alike only once
+# fragmented): one part, prepared (before the fragmenting it was refused as two solids 0.8 mm apart)
+touching = rkcase.ROOT / "tests" / "pipeline" / "data" / "touching_solids" / "box_and_cylinder.step"
+tools.prep(tools.case("touching_solids"), 1, scene=scene, sets=[f"geometry.cad={touching}", "discretization.spacing=1.5e-3"])
 
 # Suspicious but legal: the die pressing away from the part (direction +z) never touches it. The run
 # completes (exit 0) with a warning naming the die on stderr, in solve.json and in report.md.

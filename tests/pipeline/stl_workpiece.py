@@ -94,6 +94,6 @@ for name, kw, needle in (("open", {"keep": 11}, "is not watertight"),
                          ("inward", {"inward": True}, "facets point inward"),
                          # (CGAL's repair drops a repeated facet; gmsh meshes the file as it is and failed with
                          # "Wrong topology of boundary mesh for parametrization")
-                         ("repeated", {"repeat_first": True}, "1 of its 13 facets repeat another facet")):
+                         ("repeated", {"repeat_first": True}, "1 of its 13 facets repeat another facet, which gmsh cannot mesh")):
     p = tools.prep(tools.case(f"stl_{name}"), 1, scene=box_stl(name, 10, 10, 20, **kw), expect_ok=False)
     rkcase.check(p.returncode != 0 and f"{name}.stl: " in p.stderr and needle in p.stderr, f"{name} STL: {p.stderr.strip()}")
