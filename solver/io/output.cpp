@@ -34,6 +34,16 @@ double point_heat(const State& st, std::size_t g) {
 
 }  // namespace
 
+double particle_field_temperature(const Model& md, const State& st, std::size_t I) {
+  if (st.particle_temperature.empty()) return 0.0;
+  double T = 0;  // with a specific heat table the shapes carry the enthalpy (thermal/heat_transfer.hpp)
+  for (auto k = md.material_offsets[I]; k < md.material_offsets[I + 1]; ++k) {
+    const double T_J = st.particle_temperature[std::size_t(md.material_cols[std::size_t(k)])];
+    T += md.material_N[std::size_t(k)] * (md.tabled_heat() ? md.enthalpy(T_J) : T_J);
+  }
+  return md.tabled_heat() ? md.temperature_of(T) : T;
+}
+
 void cauchy_measures(const double* tau, double J, double& von_mises, double& pressure) {
   const double p = (tau[0] + tau[1] + tau[2]) / 3;
   const double s[6] = {tau[0] - p, tau[1] - p, tau[2] - p, tau[3], tau[4], tau[5]};
@@ -121,15 +131,7 @@ void ResultWriter::write_frame(const Model& md, const State& st, const std::vect
     pr.push_back(value(3));
     for (int c = kStress; c < kStress + 6; ++c) sigma.push_back(value(c));
     if (thermal_col_ > 0) {  // with conduction T^h(X_I) and the pending heat, else the points' temperature
-      double T = 0;  // with a specific heat table the shapes carry the enthalpy (thermal/heat_transfer.hpp)
-      if (!st.particle_temperature.empty()) {
-        for (auto k = md.material_offsets[I]; k < md.material_offsets[I + 1]; ++k) {
-          const double T_J = st.particle_temperature[std::size_t(md.material_cols[std::size_t(k)])];
-          T += md.material_N[std::size_t(k)] * (md.tabled_heat() ? md.enthalpy(T_J) : T_J);
-        }
-        if (md.tabled_heat()) T = md.temperature_of(T);
-      }
-      temperature.push_back(T + value(thermal_col_));
+      temperature.push_back(particle_field_temperature(md, st, I) + value(thermal_col_));
       rate.push_back(value(thermal_col_ + 1)), flow.push_back(value(thermal_col_ + 2));
     }
     for (int k = 0; damage_col_ > 0 && k < kDamage; ++k) damage[k].push_back(value(damage_col_ + k));

@@ -17,6 +17,11 @@ namespace rk {
 // Cauchy von Mises stress and pressure of a point from its Kirchhoff stress (sigma = tau / J).
 void cauchy_measures(const double* tau, double J, double& von_mises, double& pressure);
 
+// With conduction (the particles carry the field T^h), T^h at owned particle I's material, X_I + u^h(X_I):
+// sum_J N_J(X_I) T_J (through the enthalpy with a specific heat table); the frames and the tracks add the
+// points' pending plastic heat. 0 without conduction (the points' own temperatures are the field then).
+double particle_field_temperature(const Model& md, const State& st, std::size_t I);
+
 // The frame's files and layout: shared/result_frame.hpp.
 class ResultWriter {
  public:

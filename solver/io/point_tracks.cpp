@@ -38,6 +38,7 @@ PointTracks::PointTracks(const std::string& case_dir, const Scene& scene, const 
   }
   sums_.assign(tracks.size() * std::size_t(values_ + 1), 0.0);
   row_.assign(1 + tracks.size() * std::size_t(values_), 0.0);
+  field_.assign(tracks.size(), 0.0);
   std::vector<std::string> columns{"time"};
   for (const auto& t : tracks) {
     for (const char* q : {".x", ".y", ".z", ".eq_plastic_strain", ".von_mises", ".pressure"}) columns.push_back(t.name + q);
@@ -73,10 +74,12 @@ void PointTracks::record(const Model& md, const State& st, const Comm& comm) {
   if (mapped_ != Mapping{st.reference_updates, md.m, md.nbr.size()}) map_locals(md, st.reference_updates);
   const std::size_t stride = std::size_t(values_) + 1;  // the positive weights' sum, then the values
   std::fill(sums_.begin(), sums_.end(), 0.0);
-  for (const auto& [I, t] : owned_) {  // the position, from the owner
+  std::fill(field_.begin(), field_.end(), 0.0);
+  for (const auto& [I, t] : owned_) {  // the position, and with conduction T^h there, from the owner
     double x[3];
     material_position(md, st, I, x);
     for (int i = 0; i < 3; ++i) sums_[stride * std::size_t(t) + 1 + std::size_t(i)] = x[i];
+    field_[std::size_t(t)] = particle_field_temperature(md, st, I);
   }
   for (const Term& q : terms_) {  // every point once, on its rank
     const std::size_t g = q.point;
@@ -87,16 +90,18 @@ void PointTracks::record(const Model& md, const State& st, const Comm& comm) {
     s[0] += a;
     s[4] += a * st.ep[g], s[5] += a * vm, s[6] += a * p;
     int c = 7;
-    if (!st.temperature.empty()) s[c++] += a * st.temperature[g];
+    if (!st.temperature.empty()) s[c++] += a * (st.particle_temperature.empty() ? st.temperature[g] : st.heat_pending[g]);
     for (std::size_t k = 0; k < kDamageCriteria && !st.damage.empty(); ++k) s[c++] += a * st.damage[kDamageCriteria * g + k];
   }
   comm.sum(sums_.data(), int(sums_.size()));
+  comm.sum(field_.data(), int(field_.size()));
   row_[0] = st.t;
   for (std::size_t t = 0; t < ids_.size(); ++t) {
     const double* s = &sums_[stride * t];
     double* r = &row_[1 + std::size_t(values_) * t];
     for (int i = 0; i < 3; ++i) r[i] = s[1 + i];
     for (int c = 3; c < values_; ++c) r[c] = s[0] > 0 ? s[1 + c] / s[0] : 0.0;
+    if (!st.temperature.empty()) r[6] += field_[t];  // (the frames' temperature: T^h and the pending heat)
   }
   collectively(comm, [&] { return writer_ ? (writer_->write(row_), 0) : 0; });  // a full disk stops all ranks
 }

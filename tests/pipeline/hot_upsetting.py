@@ -108,6 +108,16 @@ rkcase.check(all(t1 > t0 for t0, t1 in zip(times, times[1:])) and
              f"tracks.csv: the restarted 2-rank run's {len(times)} rows ascend, its last equal to the 1-rank run's within 1e-9")
 rkcase.check(float(a["die_face.temperature"]) < float(a["core.temperature"]) - 100,
              f"the die face's centre at {float(a['die_face.temperature']):.0f} K, the core at {float(a['core.temperature']):.0f} K")
+# and they read the frames' temperature at their particles: the conduction's field T^h there with the pending
+# plastic heat (the tracks took the points' weighted mean: the die face's centre 1207 K in the tracks against
+# 1156 K in the frame at 0.51 s of a probe's run, 2026-12-08); the last row is at the last frame's time
+m = meshio.read(sorted((one / "vtk").glob("frame_*.vtu"))[-1])
+for name in ("core", "die_face", "equator"):
+    at = np.array([float(a[f"{name}.{c}"]) for c in "xyz"])
+    i = int(np.argmin(((m.points - at) ** 2).sum(axis=1)))
+    T_frame = float(m.point_data["temperature"].ravel()[i])
+    rkcase.check(abs(float(a[f"{name}.temperature"]) - T_frame) < 1e-6,
+                 f"track {name}: {float(a[name + '.temperature']):.6f} K, the frame at its particle {T_frame:.6f} K")
 
 # A temperature region starts with its thermal strain (the part heated locally from the uniform 1423 K):
 # the billet's lower half at 1323 K, 0.02 s. The first step's thermal work counts that strain's jump,
