@@ -427,6 +427,16 @@ int run(int argc, char** argv) {
     for (const auto& entry : fs::directory_iterator(dir))
       frames = std::max<std::int64_t>(frames, rk::result_frame_number(entry.path().filename().string()) + 1);
   }
+  // frames missing at the end on every rank (deleted, a disk that filled) would pass unseen: the run's own count
+  if (solved && fs::exists(case_dir + "/solve.json")) {
+    std::ifstream in(case_dir + "/solve.json");
+    const nlohmann::json solve = nlohmann::json::parse(in, nullptr, false);
+    if (!solve.is_discarded() && solve.contains("frames") && solve["frames"].is_number_integer() &&
+        solve["frames"].get<std::int64_t>() > frames)
+      std::fprintf(stderr, "rkpost: warning: %s/solve.json says the run wrote %lld frames, but results/ holds %lld: the "
+                   "last ones are missing on every rank\n", case_dir.c_str(),
+                   static_cast<long long>(solve["frames"].get<std::int64_t>()), static_cast<long long>(frames));
+  }
   fs::create_directories(case_dir + "/vtk");
   // an earlier, longer run's files past this run's last frame would pass for its results: removed
   // (frame_FFFFF.vtu, die_NAME_FFFFF.vtu, and of --partitioned, frame_FFFFF.pvtu and its pieces' folder frame_FFFFF)

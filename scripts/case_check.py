@@ -60,6 +60,9 @@ def case_folder(needs=("prep.json",)):
             if not (case / f).exists():
                 made_by = {"prep.json": "rkprep", "history.csv": "rksolve", "vtk/case.pvd": "rkpost"}.get(f, "rkprep")
                 raise argparse.ArgumentTypeError(f"{text}: not a case folder with {f} (written by {made_by})")
+        if "vtk/case.pvd" in needs and any((case / "vtk").glob("frame_*.pvtu")) and not any((case / "vtk").glob("frame_*.vtu")):
+            raise argparse.ArgumentTypeError(f"{text}: its frames are one piece per rank (rkpost --partitioned); this script "
+                                             f"reads merged frames: run rkpost {text}")
         check_run(case)
         return case
     return check

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <cstdlib>
+#include <fstream>
 #include <sstream>
 
 #include "boundary/essential_bc.hpp"
@@ -54,6 +56,18 @@ namespace {
 // A dwell's thermal strain worth a warning (the shape is held while the temperature moves): 1e-4, 7 K of
 // steel's expansion, 0.01 mm over 100 mm
 constexpr double kDwellHeldStrain = 1e-4;
+
+// The value of `column` in the first row of the CSV file at `path`, or `fallback` where it cannot be read
+double first_row_value(const std::string& path, const std::string& column, double fallback) {
+  std::ifstream in(path);
+  std::string header, row;
+  if (!std::getline(in, header) || !std::getline(in, row)) return fallback;
+  std::istringstream names(header), values(row);
+  std::string name, value;
+  while (std::getline(names, name, ',') && std::getline(values, value, ','))
+    if (name == column) return std::strtod(value.c_str(), nullptr);
+  return fallback;
+}
 
 // Ctrl-C (SIGINT) or a job scheduler's SIGTERM: the run stops at the next step on every rank, after
 // writing a checkpoint and a frame, so that --restart goes on from there.
@@ -200,7 +214,7 @@ void Simulation::dwell() {
   timer_.start();
   deformation_gradient();
   stress_update();
-  const double T0 = mean_temperature();
+  const double entered = mean_temperature();  // (the stage's start, unless this is a restart within the dwell)
   for (;;) {
     timer_.start();
     const bool last = st_.t >= scene_.time.end * (1 - 1e-12);
@@ -224,6 +238,9 @@ void Simulation::dwell() {
   // is told that its thermal strain (and any springback) waits for the next stage's first step (a 600 s
   // dwell of the hot upsetting in air: 1284 -> 486 K, the radius held where it would shrink 1.1 %)
   if (md_.thermal_strain()) {
+    // from the stage's start: its first history row (rank 0 keeps the rows before a restart; the others'
+    // warnings are not reported)
+    const double T0 = comm_.rank() == 0 ? first_row_value(opt_.case_dir + "/history.csv", "temperature_mean", entered) : entered;
     const double T1 = mean_temperature(), stretch = md_.thermal_stretch(T1) / md_.thermal_stretch(T0) - 1;
     if (std::abs(stretch) > kDwellHeldStrain) {
       char text[400];
@@ -730,6 +747,9 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     write_run_scene(opt.case_dir, scene_, sets);  // (a restart's too: the next goes on with its end and intervals)
     // a run without --from or --restart is no stage: an earlier run's link would chain it to another case's frames
     if (opt.from.empty() && !opt.restart) std::filesystem::remove(opt.case_dir + "/" + kStageLinkFile);
+    // rkpost's outputs and the scripts' (vtk/, plots/, report.md) are of the results this run replaces or
+    // extends: a report kept across a new run gave the old run's footprint and linked its pictures
+    for (const char* derived : {"vtk", "plots", "report.md"}) std::filesystem::remove_all(opt.case_dir + "/" + derived);
     return 0;
   });
   if (!opt.from.empty()) {  // a stage: the previous case's final state, this stage's own records

@@ -17,6 +17,7 @@ every process runs the script."""
 import json
 import shutil
 import subprocess
+import sys
 import time
 import xml.etree.ElementTree as ET
 
@@ -193,3 +194,9 @@ rkcase.check(p.returncode == 0 and len(said) == 1 and "frame 1 skipped" in said[
 listed = [d.get("file") for d in ET.parse(vtk / "case.pvd").getroot().iter("DataSet")]
 rkcase.check(listed == ["frame_00000.pvtu", "frame_00002.pvtu"] and not (vtk / "frame_00001.pvtu").exists()
              and not (vtk / "frame_00001").exists(), f"frame 1 skipped, neither .pvtu nor pieces left; written: {listed}")
+
+# The scripts read merged frames: on a partitioned case one message naming the case and the way out (they
+# failed with an IndexError or meshio's "Could not deduce file format ... .pvtu")
+p = tools.run([sys.executable, rkcase.ROOT / "scripts" / "taylor_metrics.py", case], expect_ok=False)
+rkcase.check(p.returncode != 0 and "its frames are one piece per rank (rkpost --partitioned)" in p.stderr
+             and "Traceback" not in p.stderr, f"taylor_metrics.py on a partitioned case: {p.stderr.strip()}")

@@ -1,6 +1,7 @@
 """rkpost with damaged results: one rank's frame whose bytes were changed on disk is
 reported, naming the file and the dataset, and skipped; a frame file missing on a rank is reported
-and skipped; every other frame is still merged and rkpost exits 0. rksolve writes each frame whole
+and skipped; every other frame is still merged and rkpost exits 0; the last frames missing on every rank
+are said against solve.json's count. rksolve writes each frame whole
 (temporary name, fsync, rename), so a killed run leaves no half-written frame file behind. Results
 of another case, and a frame, solve.json or history.csv of another format, are refused with the file
 named and a non-zero exit."""
@@ -47,6 +48,15 @@ merged = [d.get("file") for d in ET.parse(damaged / "vtk" / "case.pvd").getroot(
 rkcase.check(p.returncode == 0 and "frame 0 skipped" in p.stderr and merged == ["frame_00001.vtu", "frame_00004.vtu"],
              f"a damaged frame 0 is skipped as the others: exit {p.returncode}, {merged}, {p.stderr.strip()[:300]}")
 
+# the last frame missing on every rank: nothing in results/ says a frame should follow, but solve.json counts them
+cut = tools.case("rkpost_last_frame_missing")
+shutil.copytree(case, cut)
+for r in (0, 1):
+    (cut / "results" / f"rank_{r:04d}" / "frame_00004.h5").unlink()
+p = tools.post(cut, expect_ok=False)
+rkcase.check(p.returncode == 0 and "solve.json says the run wrote 5 frames, but results/ holds 4" in p.stderr,
+             f"frames missing at the end on every rank are said: {p.stderr.strip()[:400]}")
+
 # Another case's results beside new subdomains (copied in by hand: rkprep itself refuses such a
 # folder): rkpost merges none of them and says why, with a non-zero exit.
 other = tools.case("rkpost_foreign_frames")
@@ -86,3 +96,13 @@ p = tools.post(case, expect_ok=False)
 errors = [ln for ln in p.stderr.splitlines() if "rkpost: error" in ln]
 rkcase.check(p.returncode != 0 and len(errors) == 1 and "history.csv" in errors[0] and "column 3 is 'internal'" in errors[0],
              f"a history.csv of other columns is refused: {errors[0] if errors else p.stderr.strip()}")
+
+# A new run of a case removes rkpost's outputs of the old one (vtk/, plots/, report.md): a report kept across
+# it gave the old run's Taylor footprint and linked pictures of frames the new run did not write
+fresh = tools.case("rkpost_outputs_of_an_old_run")
+shutil.copytree(cut, fresh)
+tools.post(fresh)
+rkcase.check((fresh / "report.md").exists() and (fresh / "vtk" / "case.pvd").exists(), "rkpost wrote its outputs")
+tools.solve(fresh, 2, sets=["time.end=4e-6", "time.output_interval=2e-6"])
+rkcase.check(not any((fresh / d).exists() for d in ("vtk", "plots", "report.md")),
+             "a new run removed the old run's vtk/, plots/ and report.md")
