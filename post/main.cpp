@@ -583,6 +583,9 @@ int run(int argc, char** argv) {
       index.push_back({fr.time, int(dies.size() + 1 + k), file, spec.name});
     }
   }
+  if (solved && !chosen.empty() && skipped == int(chosen.size()))  // (each said above) nothing to show: an error
+    throw rk::Error(case_dir + ": none of the " + std::to_string(chosen.size()) + " frames asked for could be merged "
+                    "(each skipped, above); no case.pvd written");
   rk::write_pvd(case_dir + "/vtk/case.pvd", index);
   if (!solved) {  // nothing solved: the discretization only (report.md comes with a run)
     if (!quiet)

@@ -15,6 +15,10 @@ namespace rk {
 CaseLock::CaseLock(const std::string& case_dir) : path_(case_dir + "/" + kSolveLock) {
   for (;;) {
     fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    // something else by the lock's name (a folder made by hand) would let two runs write one case: refused
+    if (struct stat at {}; fd_ < 0 && ::lstat(path_.c_str(), &at) == 0 && !S_ISREG(at.st_mode))
+      throw Error(case_dir + ": " + path_ + " is not a lock file, so the case cannot be locked against another run "
+                  "writing it; remove it");
     if (fd_ < 0) return;
     // (a few tries over 0.1 s: rkpost's case_locked holds a shared lock for an instant)
     int got = -1, why = 0;

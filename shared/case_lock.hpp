@@ -11,7 +11,8 @@ namespace rk {
 class CaseLock {
  public:
   // Takes the lock, or throws Error naming the case when another process holds it. Where the file
-  // cannot be made (no such folder, a read-only case) nothing is locked: the run's own checks say why.
+  // cannot be made (no such folder, a read-only case) nothing is locked: the run's own checks say why;
+  // something other than a file by its name is refused.
   explicit CaseLock(const std::string& case_dir);
   ~CaseLock();
   CaseLock(const CaseLock&) = delete;

@@ -3,6 +3,7 @@
 #pragma once
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -24,9 +25,14 @@ inline std::vector<Override> parse_overrides(const std::vector<std::string>& set
   return out;
 }
 
+// A write past the file-size limit (ulimit -f) fails with EFBIG, which the writers report by file, instead of
+// SIGXFSZ killing the program without a word (and leaving a half-written file and the case's lock)
+inline void ignore_file_size_signal() { std::signal(SIGXFSZ, SIG_IGN); }
+
 // main() of a serial program: runs `run`, turning any error into one message and exit status 1.
 template <class Run>
 int guarded_main(const char* program, Run run) {
+  ignore_file_size_signal();
   try {
     return run();
   } catch (const Error& e) {

@@ -10,6 +10,7 @@
 #include "solver.hpp"
 
 int main(int argc, char** argv) {
+  rk::ignore_file_size_signal();
   CLI::App app{"rksolve: run the explicit RKPM solution of a prepared case (mpirun -np N rksolve CASE)", "rksolve"};
   rk::add_version_flag(app);
   rk::SolveOptions options;

@@ -175,6 +175,11 @@ class Simulation {
 
 // The step, t^n -> t^{n+1}: positions at t^n and velocities v^{n-1/2} in, both one step on out.
 void Simulation::run() {
+  // rkpost's outputs and the scripts' (vtk/, plots/, report.md) are of the results this run replaces or extends,
+  // removed once it is set to go (a refused start leaves the case as it was): a report kept across a new run gave
+  // the old run's footprint and linked its pictures
+  if (comm_.rank() == 0)
+    for (const char* derived : {"vtk", "plots", "report.md"}) std::filesystem::remove_all(opt_.case_dir + "/" + derived);
   if (dwell_) return dwell();
   for (;;) {
     timer_.start();
@@ -747,9 +752,6 @@ Simulation::Simulation(const SolveOptions& opt, const Comm& comm)
     write_run_scene(opt.case_dir, scene_, sets);  // (a restart's too: the next goes on with its end and intervals)
     // a run without --from or --restart is no stage: an earlier run's link would chain it to another case's frames
     if (opt.from.empty() && !opt.restart) std::filesystem::remove(opt.case_dir + "/" + kStageLinkFile);
-    // rkpost's outputs and the scripts' (vtk/, plots/, report.md) are of the results this run replaces or
-    // extends: a report kept across a new run gave the old run's footprint and linked its pictures
-    for (const char* derived : {"vtk", "plots", "report.md"}) std::filesystem::remove_all(opt.case_dir + "/" + derived);
     return 0;
   });
   if (!opt.from.empty()) {  // a stage: the previous case's final state, this stage's own records

@@ -186,6 +186,11 @@ void read_checkpoint(const std::string& path, Model& md, State& st, RunClock& c,
   const std::int64_t updates = f.exists("particles/global_id") ? f.attr_int("reference_updates") : 0;
   if ((updates == 0 && f.attr_int("particles") != std::int64_t(md.n)) || f.attr_int("points") != std::int64_t(md.m))
     throw Error(path + ": the checkpoint does not match this case's subdomain (re-run from the start)");
+  // a rank's checkpoint read by another (swapped or copied files of equal sizes passed the counts above, and the
+  // restart ran on the wrong particles and overwrote the finished run's last frame)
+  if (f.has_attr("rank") && f.attr_int("rank") != std::int64_t(md.rank))
+    throw Error(path + ": the checkpoint of rank " + std::to_string(f.attr_int("rank")) + ", here read by rank " +
+                std::to_string(md.rank) + " (its files swapped, or copied from another run?)");
   if (!f.has_attr("format") || f.attr_int("format") != kCheckpointFormat)
     throw Error(path + ": a checkpoint of another rksolve version (format " +
                 (f.has_attr("format") ? std::to_string(f.attr_int("format")) : std::string("1")) + ", this one reads " +

@@ -1,4 +1,5 @@
-"""A missing, foreign (other scene or other prep) or wrong-rank-count subdomain file stops ALL ranks with one clear
+"""A missing, foreign (other scene or other prep) or wrong-rank-count subdomain file, and checkpoints swapped between
+ranks, stop ALL ranks with one clear
 message and a non-zero exit, within seconds (no hang)."""
 import shutil
 import time
@@ -51,3 +52,26 @@ tools.run([tools.bin / "rkprep", rkcase.TAYLOR, "--ranks", 2, "--out", other, "-
 for name in ("rank_0001.h5", "rank_0001.h5.fnv1a"):
     shutil.copy(other / "sub" / name, case / "sub" / name)
 expect_failure(case, 2, "sub/rank_0001.h5 was written by another rkprep run than", "rank files of two preps")
+
+# a finished run's checkpoints swapped between its ranks (equal counts of particles and points on each): the restart
+# ran rank 0 on rank 1's state, stopped on a symmetry-plane check and overwrote the run's good last frame
+case = tools.case("bad_swapped_checkpoints")
+tools.prep(case, 2, sets=coarse)
+tools.solve(case, 2, sets=["time.end=2e-6", "time.output_interval=1e-6"])
+last = case / "results" / "rank_0000" / "frame_00002.h5"
+before = last.read_bytes()
+for suffix in ("", ".previous"):
+    a, b = (case / "checkpoint" / f"rank_000{r}.h5{suffix}" for r in (0, 1))
+    if a.exists():
+        a.rename(case / "checkpoint" / "swap"), b.rename(a), (case / "checkpoint" / "swap").rename(b)
+p = tools.run(["mpirun", "-np", 2, tools.bin / "rksolve", case, "--quiet", "--restart", "--set", "time.end=3e-6"], expect_ok=False,
+              timeout=60)
+rkcase.check(p.returncode != 0 and "the checkpoint of rank 1, here read by rank 0" in p.stderr and last.read_bytes() == before,
+             f"swapped checkpoints are refused by file, the last frame kept: {p.stderr.strip().splitlines()[:2]}")
+
+# a folder by the lock file's name (made by hand): the case could not be locked, and two runs wrote one case,
+# their frames mixed
+case = tools.case("bad_lock")
+tools.prep(case, 1, sets=coarse)
+(case / ".rksolve.lock").mkdir()
+expect_failure(case, 1, ".rksolve.lock is not a lock file", "a folder where the lock file goes")

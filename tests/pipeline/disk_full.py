@@ -148,3 +148,10 @@ a = meshio.read(sorted((whole / "vtk").glob("frame_*.vtu"))[-1])
 b = meshio.read(sorted((rescued / "vtk").glob("frame_*.vtu"))[-1])
 rkcase.check(np.array_equal(a.points, b.points) and np.array_equal(a.point_data["velocity"], b.point_data["velocity"]),
              "restarted after the full disk: final state bitwise equal to an uninterrupted run")
+
+# past the file-size limit (ulimit -f) a write fails with a message, not SIGXFSZ's silent kill (exit 153; rkprep
+# left its lock and a half-written rank file, rkpost a .tmp)
+limited = tools.case("file_size_limit")
+shutil.copytree(whole, limited)
+p = tools.run(["bash", "-c", f"ulimit -f 4; exec '{tools.bin / 'rkpost'}' '{limited}' --quiet --no-pictures"], expect_ok=False)
+rkcase.check(p.returncode == 1 and "write failed (disk full?)" in p.stderr, f"rkpost past ulimit -f: exit {p.returncode}, {p.stderr.strip()}")

@@ -106,3 +106,12 @@ rkcase.check((fresh / "report.md").exists() and (fresh / "vtk" / "case.pvd").exi
 tools.solve(fresh, 2, sets=["time.end=4e-6", "time.output_interval=2e-6"])
 rkcase.check(not any((fresh / d).exists() for d in ("vtk", "plots", "report.md")),
              "a new run removed the old run's vtk/, plots/ and report.md")
+
+# every frame of a rank gone: nothing can be merged, which is an error, not "0 frames" and exit 0
+empty = tools.case("rkpost_no_frame_of_rank_1")
+shutil.copytree(cut, empty)
+for f in (empty / "results" / "rank_0001").glob("frame_*.h5"):
+    f.unlink()
+p = tools.post(empty, expect_ok=False)
+rkcase.check(p.returncode != 0 and "frames asked for could be merged (each skipped, above)" in p.stderr,
+             f"no frame merged is an error: exit {p.returncode}, {p.stderr.strip()[-300:]}")
