@@ -509,6 +509,7 @@ int run(int argc, char** argv) {
   const auto whole_strain = std::find_if(whole_fields.begin(), whole_fields.end(),
                                          [](const Field& q) { return std::string(q.name) == "eq_plastic_strain"; });
   int skipped = 0;
+  std::vector<std::string> skipped_why;  // (for report.md)
   std::vector<std::string> fill;  // the dies' fill at the last frame written
   for (int f : chosen) {
     char stem[32];
@@ -533,6 +534,7 @@ int run(int argc, char** argv) {
     } catch (const rk::Error& e) {
       if (partitioned) fs::remove_all(vtk + stem);  // no piece of a frame without its .pvtu
       std::fprintf(stderr, "rkpost: frame %d skipped: %s\n", f, e.what());
+      skipped_why.push_back("frame " + std::to_string(f) + ": " + e.what());
       ++skipped;
       continue;
     }
@@ -596,7 +598,7 @@ int run(int argc, char** argv) {
   if (!no_pictures) rk::make_pictures(case_dir, quiet, !plots_only);  // before the report, which lists them
   std::vector<std::string> fold_lines;
   for (const rk::Fold& f : folds) fold_lines.push_back(rk::describe_fold(f));
-  rk::write_report(case_dir, fill, folding ? &fold_lines : nullptr);
+  rk::write_report(case_dir, fill, folding ? &fold_lines : nullptr, skipped_why);
   if (!fs::exists(case_dir + "/solve.json") && rk::case_locked(case_dir))  // a run still going: its frames so far
     std::fprintf(stderr, "rkpost: warning: %s: rksolve is still running in it (it holds %s/%s): these are its frames so far\n",
                  case_dir.c_str(), case_dir.c_str(), rk::kSolveLock);

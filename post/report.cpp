@@ -52,7 +52,7 @@ nlohmann::json read_prep_json(const std::string& case_dir) {
 }
 
 void write_report(const std::string& case_dir, const std::vector<std::string>& fill_lines,
-                  const std::vector<std::string>* folds) {
+                  const std::vector<std::string>* folds, const std::vector<std::string>& skipped) {
   namespace fs = std::filesystem;
   std::ifstream hist(case_dir + "/history.csv");
   if (!hist) throw Error(case_dir + "/history.csv: cannot be read (rksolve writes it: run rksolve on the case first)");
@@ -115,6 +115,7 @@ void write_report(const std::string& case_dir, const std::vector<std::string>& f
   r << "| ranks | " << prep["ranks"] << " (imbalance " << num(prep["partition"]["imbalance"], 3) << ") |\n";
   for (const auto& w : solve.warnings) r << "| **warning** | " << w << " |\n";
   for (const auto& p : solve.presses) r << "| press | " << p << " |\n";
+  for (const auto& f : skipped) r << "| **frame skipped by rkpost** | " << f << " |\n";
   if (!finished) {
     r << "| run | **not finished**: no solve.json (rksolve stopped with an error, its message says why, or is "
          "still running); history.csv ends at t = "

@@ -12,7 +12,8 @@ nlohmann::json read_prep_json(const std::string& case_dir);
 
 // `fill`: a line per die on its fill at the last frame (post/die_fill_regions.hpp), or none
 // fill: the dies' unfilled regions at the last frame; folds: the folds found (null: not looked for)
+// skipped: rkpost's messages on the frames it could not merge (each a warning row)
 void write_report(const std::string& case_dir, const std::vector<std::string>& fill = {},
-                  const std::vector<std::string>* folds = nullptr);
+                  const std::vector<std::string>* folds = nullptr, const std::vector<std::string>& skipped = {});
 
 }  // namespace rk

@@ -38,6 +38,9 @@ rkcase.check("frame 3 skipped" in p.stderr and "rank_0000/frame_00003.h5: missin
 merged = [d.get("file") for d in ET.parse(case / "vtk" / "case.pvd").getroot().iter("DataSet")]
 rkcase.check(merged == ["frame_00000.vtu", "frame_00001.vtu", "frame_00004.vtu"],
              f"the other 3 of 5 frames are merged: {merged}")
+report = (case / "report.md").read_text()  # (the skipped frames were said on stderr alone)
+rkcase.check("| **frame skipped by rkpost** | frame 2: " in report and "| **frame skipped by rkpost** | frame 3: " in report
+             and "rank_0000/frame_00003.h5: missing" in report, "report.md names the skipped frames")
 # frame 0 cut short on rank 0 as well (rkpost read its fields' list from it and stopped, exit 1)
 damaged = tools.case("rkpost_bad_frame_0")
 shutil.copytree(case, damaged)
