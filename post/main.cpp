@@ -25,6 +25,7 @@
 #include "pictures.hpp"
 #include "pvtu_writer.hpp"
 #include "report.hpp"
+#include "run_summary.hpp"
 #include "result_frame.hpp"
 #include "scene.hpp"
 #include "subdomain.hpp"
@@ -429,13 +430,10 @@ int run(int argc, char** argv) {
   }
   // frames missing at the end on every rank (deleted, a disk that filled) would pass unseen: the run's own count
   if (solved && fs::exists(case_dir + "/solve.json")) {
-    std::ifstream in(case_dir + "/solve.json");
-    const nlohmann::json solve = nlohmann::json::parse(in, nullptr, false);
-    if (!solve.is_discarded() && solve.contains("frames") && solve["frames"].is_number_integer() &&
-        solve["frames"].get<std::int64_t>() > frames)
+    if (const std::int64_t written = rk::read_run_summary(case_dir + "/solve.json").frames; written > frames)
       std::fprintf(stderr, "rkpost: warning: %s/solve.json says the run wrote %lld frames, but results/ holds %lld: the "
-                   "last ones are missing on every rank\n", case_dir.c_str(),
-                   static_cast<long long>(solve["frames"].get<std::int64_t>()), static_cast<long long>(frames));
+                   "last ones are missing on every rank\n", case_dir.c_str(), static_cast<long long>(written),
+                   static_cast<long long>(frames));
   }
   fs::create_directories(case_dir + "/vtk");
   // an earlier, longer run's files past this run's last frame would pass for its results: removed

@@ -91,7 +91,7 @@ std::array<std::size_t, 2> near_pair(const VolumeMesh& mesh, const std::vector<i
 // Solids of one file that do not touch but lie within the shape functions' reach of each other would be
 // tied across the gap as if joined (two 10 mm boxes 1 mm apart at 2.5 mm spacing: the one no die touched
 // took a plastic strain of 0.19 from its neighbour's upsetting). Refused, naming the gap. Solids that touch
-// (sharing nodes, or nodes within 1e-6 of the reach) are one part.
+// (sharing nodes, or nodes within 1e-6 of the largest spacing) are one part.
 void check_solids_apart(const VolumeMesh& mesh, std::vector<int> group, const MeshRequest& r, std::size_t solids) {
   const std::vector<double> h = node_spacing(mesh);  // as the supports will take it (discretize)
   const double h_max = *std::max_element(h.begin(), h.end()), touching = 1e-6 * h_max;

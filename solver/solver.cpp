@@ -911,7 +911,7 @@ void Simulation::finish() {
   counts.wall0 = wall0_, counts.setup_s = setup_s_, counts.baseline_mb = baseline_mb_;
   counts.plastic_updates = plastic_updates_, counts.point_updates = point_updates_;
   counts.max_ebc_error = max_ebc_error_, counts.impact_pressure = pressure_bound_.impact;
-  counts.max_penetration = max_penetration_, counts.h_min = health_->scales().h_min;
+  counts.max_penetration = max_penetration_, counts.h_min = health_->scales().h_min, counts.v_start = health_->scales().v_start;
   counts.frames = results_->frames();
   counts.first_step = first_step_;
   counts.start_warnings = start_warnings_;

@@ -114,6 +114,7 @@ DieContact::DieContact(const Model& md, const Scene& scene, const std::vector<Di
     face_clearance_.assign(faces * dies_.size(), 0.0);  // 0: looked up at the first step
   }
   die_moved_.assign(dies_.size(), 0.0);
+  die_rate_.assign(dies_.size(), 0.0);
   driven_.assign(2 * dies_.size(), 0.0);
   triangle0_.assign(1, 0);
   for (const auto& sf : surfaces_) triangle0_.push_back(triangle0_.back() + sf.triangle_count());
@@ -229,7 +230,7 @@ double DieContact::compute(const Model& md, const State& st, double t, double dt
     const DieMotion* mo = die ? &dies_[k].motion : nullptr;
     const double stroke = die ? this->stroke(k, t) : 0.0, rate = die ? rate_before(k, t, st.dt_half) : 0.0;
     const double die_moved = die ? std::abs(stroke - stroke_last_[k]) : 0.0;
-    if (die) stroke_last_[k] = stroke, die_moved_[k] = die_moved;
+    if (die) stroke_last_[k] = stroke, die_moved_[k] = die_moved, die_rate_[k] = rate;
     // Coulomb at the slaves; with a shear factor the faces take the friction (face_friction)
     const double mu = die && !(dies_[k].shear_factor > 0) ? dies_[k].friction : 0.0;
     const double margin = margin_;
@@ -331,7 +332,7 @@ void DieContact::face_friction(const Model& md, const State& st, double t, doubl
     for (std::size_t k = 0; k < dies_.size(); ++k) {
       const Die& die = dies_[k];
       if (!(die.shear_factor > 0)) continue;
-      const double rate = rate_before(k, t, st.dt_half), touch = kFaceTouch * std::sqrt(area);
+      const double rate = die_rate_[k], touch = kFaceTouch * std::sqrt(area);
       double& clear = face_clearance_[k * faces + f];
       clear -= face_N_sum_[f] * moved_ + die_moved_[k];
       if (clear > touch) continue;  // still farther than its touch distance: no lookup

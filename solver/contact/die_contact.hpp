@@ -211,6 +211,7 @@ class DieContact {
   std::vector<double> face_N_sum_, face_clearance_;
   double moved_ = 0;                // the largest coefficient move of this step's compute
   std::vector<double> die_moved_;   // per die: its stroke's change in this step's compute
+  std::vector<double> die_rate_;    // per die: rate_before in this step's compute (the faces' friction reads it)
   std::vector<FaceFriction> face_active_;  // reserved once
   std::vector<Stick> face_sticks_, last_face_sticks_;  // the faces' elastic sticks (slave: the face), by_face
   bool shear_ = false;                     // a die has shear_factor > 0

@@ -25,14 +25,12 @@ constexpr int kBase = 10, kThermal = 3, kDamage = int(kDamageCriteria), kProject
 constexpr int kStress = 4;  // the first stress component's column
 
 
-// The temperature column's value at a point: its temperature; with conduction (the particles carry
-// the field T^h) only its plastic heating since the last thermal update.
+}  // namespace
+
 double point_heat(const State& st, std::size_t g) {
   if (st.temperature.empty()) return 0.0;
   return st.particle_temperature.empty() ? st.temperature[g] : st.heat_pending[g];
 }
-
-}  // namespace
 
 double particle_field_temperature(const Model& md, const State& st, std::size_t I) {
   if (st.particle_temperature.empty()) return 0.0;

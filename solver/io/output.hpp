@@ -21,6 +21,9 @@ void cauchy_measures(const double* tau, double J, double& von_mises, double& pre
 // sum_J N_J(X_I) T_J (through the enthalpy with a specific heat table); the frames and the tracks add the
 // points' pending plastic heat. 0 without conduction (the points' own temperatures are the field then).
 double particle_field_temperature(const Model& md, const State& st, std::size_t I);
+// The temperature a point adds to a particle's value: its temperature; with conduction only its plastic
+// heating since the last thermal update (the particle's T^h above carries the rest).
+double point_heat(const State& st, std::size_t g);
 
 // The frame's files and layout: shared/result_frame.hpp.
 class ResultWriter {

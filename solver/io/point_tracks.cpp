@@ -9,6 +9,11 @@
 #include "rk/kinematics.hpp"
 
 namespace rk {
+namespace {
+
+constexpr int kTemperature = 6;  // a track's temperature column: after x, y, z, eq_plastic_strain, von_mises, pressure
+
+}  // namespace
 
 PointTracks::PointTracks(const std::string& case_dir, const Scene& scene, const Model& md, double resume_time,
                          const Comm& comm) {
@@ -36,9 +41,8 @@ PointTracks::PointTracks(const std::string& case_dir, const Scene& scene, const 
                                                std::to_string(t.point[2]) + ") m: outside the part?");
     ids_.push_back(chosen);
   }
-  sums_.assign(tracks.size() * std::size_t(values_ + 1), 0.0);
+  sums_.assign(tracks.size() * std::size_t(values_ + 2), 0.0);
   row_.assign(1 + tracks.size() * std::size_t(values_), 0.0);
-  field_.assign(tracks.size(), 0.0);
   std::vector<std::string> columns{"time"};
   for (const auto& t : tracks) {
     for (const char* q : {".x", ".y", ".z", ".eq_plastic_strain", ".von_mises", ".pressure"}) columns.push_back(t.name + q);
@@ -72,14 +76,15 @@ void PointTracks::record(const Model& md, const State& st, const Comm& comm) {
   if (ids_.empty()) return;
   // the local numbering and the supports change at a reference update only
   if (mapped_ != Mapping{st.reference_updates, md.m, md.nbr.size()}) map_locals(md, st.reference_updates);
-  const std::size_t stride = std::size_t(values_) + 1;  // the positive weights' sum, then the values
+  // the positive weights' sum, the values, then the particle's own T^h (the owner's, with conduction)
+  const std::size_t stride = std::size_t(values_) + 2;
   std::fill(sums_.begin(), sums_.end(), 0.0);
-  std::fill(field_.begin(), field_.end(), 0.0);
   for (const auto& [I, t] : owned_) {  // the position, and with conduction T^h there, from the owner
     double x[3];
     material_position(md, st, I, x);
-    for (int i = 0; i < 3; ++i) sums_[stride * std::size_t(t) + 1 + std::size_t(i)] = x[i];
-    field_[std::size_t(t)] = particle_field_temperature(md, st, I);
+    double* s = &sums_[stride * std::size_t(t)];
+    for (int i = 0; i < 3; ++i) s[1 + i] = x[i];
+    s[stride - 1] = particle_field_temperature(md, st, I);
   }
   for (const Term& q : terms_) {  // every point once, on its rank
     const std::size_t g = q.point;
@@ -90,18 +95,17 @@ void PointTracks::record(const Model& md, const State& st, const Comm& comm) {
     s[0] += a;
     s[4] += a * st.ep[g], s[5] += a * vm, s[6] += a * p;
     int c = 7;
-    if (!st.temperature.empty()) s[c++] += a * (st.particle_temperature.empty() ? st.temperature[g] : st.heat_pending[g]);
+    if (!st.temperature.empty()) s[c++] += a * point_heat(st, g);
     for (std::size_t k = 0; k < kDamageCriteria && !st.damage.empty(); ++k) s[c++] += a * st.damage[kDamageCriteria * g + k];
   }
   comm.sum(sums_.data(), int(sums_.size()));
-  comm.sum(field_.data(), int(field_.size()));
   row_[0] = st.t;
   for (std::size_t t = 0; t < ids_.size(); ++t) {
     const double* s = &sums_[stride * t];
     double* r = &row_[1 + std::size_t(values_) * t];
     for (int i = 0; i < 3; ++i) r[i] = s[1 + i];
     for (int c = 3; c < values_; ++c) r[c] = s[0] > 0 ? s[1 + c] / s[0] : 0.0;
-    if (!st.temperature.empty()) r[6] += field_[t];  // (the frames' temperature: T^h and the pending heat)
+    if (!st.temperature.empty()) r[kTemperature] += s[stride - 1];  // (the frames': T^h and the pending heat)
   }
   collectively(comm, [&] { return writer_ ? (writer_->write(row_), 0) : 0; });  // a full disk stops all ranks
 }

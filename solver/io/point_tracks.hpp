@@ -46,7 +46,6 @@ class PointTracks {
   Mapping mapped_;
   int values_ = 0;                 // per track: x, y, z, eq_plastic_strain, von_mises, pressure [, T] [, 2 damage]
   std::vector<double> sums_, row_;
-  std::vector<double> field_;      // per track: T^h at its particle with conduction (from the owner)
   std::unique_ptr<HistoryWriter> writer_;
   void map_locals(const Model& md, std::int64_t updates);
 };

@@ -85,12 +85,8 @@ RunSummary summarize(const Scene& scene, const Model& md, const State& st, const
   // Only where something drives the part: a part nothing moves (still dies, no moving faces, gravity or
   // initial velocity) has no forming for inertia to disturb, and its energies are a thermal strain's
   // micro-joules, whose ratio means nothing (a billet cooling on a still die read 5e4 %).
-  const auto moving = [](const Vec3& v) { return v[0] != 0 || v[1] != 0 || v[2] != 0; };
-  bool driven = moving(scene.loads.gravity) || moving(scene.initial.velocity) ||
-                std::any_of(scene.initial.velocity_gradient.begin(), scene.initial.velocity_gradient.end(), [](double g) { return g != 0; });
-  for (const Die& d : scene.dies) driven |= d.motion.driven() || d.motion.fastest() > 0;
-  for (const EssentialFace& f : scene.prescribed_faces) driven |= f.motion.driven() || f.motion.fastest() > 0;
-  for (const Scene::Body& b : scene.bodies) driven |= moving(b.velocity);
+  const Vec3& g = scene.loads.gravity;
+  const bool driven = counts.v_start > 0 || g[0] != 0 || g[1] != 0 || g[2] != 0;
   if (driven && md.mass_scaling > 1 && clock.max_ke_ratio_late > kMaxQuasiStaticKineticRatio) {
     char text[400];
     std::snprintf(text, sizeof text,

@@ -27,6 +27,7 @@ struct RunCounts {
   double max_ebc_error = 0;       // the essential BCs' largest violation seen (m)
   double max_penetration = 0;     // the material's deepest point inside a die or rigid wall seen (m)
   double h_min = 0;               // the smallest particle spacing (m)
+  double v_start = 0;             // the fastest start or tool (m/s; HealthScales)
   double impact_pressure = 0;     // rho0 c_L v_max (Pa)
   std::int64_t frames = 0;
   std::int64_t first_step = 0;  // the step this run started from (0, or a checkpoint's)
