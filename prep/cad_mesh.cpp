@@ -12,18 +12,13 @@
 
 #include "checked_int.hpp"
 #include "discretize.hpp"
+#include "cad_format.hpp"
 #include "error.hpp"
 #include "gmsh_session.hpp"
 #include "process_memory.hpp"
 #include "stl_check.hpp"
 
 namespace rk {
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
 
 namespace {
 
@@ -136,7 +131,7 @@ VolumeMesh mesh_with_gmsh(const MeshRequest& r) {
   GmshSession session(h);
   if (ext == ".geo") {
     gmsh::open(r.cad);
-  } else if (ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs" || ext == ".brep") {
+  } else if (declares_its_unit(ext) || ext == ".brep") {
     gmsh::merge(r.cad);
     gmsh::vectorpair solids;
     gmsh::model::getEntities(solids, 3);

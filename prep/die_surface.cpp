@@ -13,6 +13,7 @@
 #include <unordered_map>
 
 #include "die_search.hpp"
+#include "cad_format.hpp"
 #include "error.hpp"
 #include "gmsh_session.hpp"
 
@@ -34,7 +35,7 @@ Soup gmsh_boundary(const Die& die, double spacing) {
   GmshSession session(h);
   if (ext == ".geo") {
     gmsh::open(die.cad);
-  } else if (ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs" || ext == ".brep") {
+  } else if (declares_its_unit(ext) || ext == ".brep") {
     gmsh::merge(die.cad);
     gmsh::option::setNumber("Mesh.MeshSizeMax", h);
   } else {

@@ -34,7 +34,4 @@ struct GmshSession {
 };
 
 
-// The CAD file's extension in lower case (".geo", ".step", ...).
-std::string lower_extension(const std::string& path);
-
 }  // namespace rk

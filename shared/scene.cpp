@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "cad_format.hpp"
 #include "error.hpp"
 #include "hash.hpp"
 
@@ -304,9 +305,7 @@ double unit_length(const std::string& unit) {
 // billet, accepted). Refused by key.
 double cad_unit(Section& s, const std::string& cad, const std::string& fallback, const char* inherited = "the default") {
   const std::string unit = s.text("unit", fallback, {"m", "mm", "cm", "in"});
-  std::string ext = std::filesystem::path(cad).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (unit != "mm" && (ext == ".step" || ext == ".stp" || ext == ".iges" || ext == ".igs"))
+  if (unit != "mm" && declares_its_unit(lower_extension(cad)))
     throw Error(s.where_of("unit") + " = " + unit + (s.has("unit") ? "" : std::string(" (") + inherited + ")") + ": " +
                 std::filesystem::path(cad).filename().string() + " is read in millimetres whatever unit it declares "
                 "(OpenCASCADE converts STEP and IGES), so its unit must be mm");
@@ -1076,9 +1075,10 @@ std::vector<std::string> material_warnings(const Scene& s) {
     // its volume whatever the elastic nu (and F-bar holds the volume of the cells' points)
     if (m.poisson_ratio > 0.45) {
       const auto wave = [](double nu) { return std::sqrt((1 - nu) / ((1 + nu) * (1 - 2 * nu))); };
+      const double faster = wave(m.poisson_ratio) / wave(0.3);
       std::snprintf(text, sizeof text, "%s.poisson_ratio = %g: the volumetric wave runs %.3gx as fast as at 0.3, so the "
                     "run takes about %.3gx the steps; metals are 0.27-0.35 elastically, and the plastic flow keeps its "
-                    "volume at any value", at.c_str(), m.poisson_ratio, wave(m.poisson_ratio) / wave(0.3), wave(m.poisson_ratio) / wave(0.3));
+                    "volume at any value", at.c_str(), m.poisson_ratio, faster, faster);
       out.push_back(text);
     }
     // the flow stress's scale: the initial yield (linear, Johnson-Cook's A) or the power law's K
